@@ -1,0 +1,45 @@
+// main.cpp — the `cdyn` command line (DESIGN.md §4).
+//
+// Parses the subcommand with CLI11 and hands over to commands.hpp.  The exit status
+// contract: 0 success, 2 bad input (one line on stderr naming the key or file),
+// 3 numerical failure (reported, never silently continued).
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "cdyn/error.hpp"
+#include "cdyn/version.hpp"
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"cdyn — a reference kernel for dynamic contact and constrained wave problems"};
+  app.set_version_flag("--version", std::string("cdyn ") + cdyn::version);
+  app.require_subcommand(1);
+
+  std::string mesh_file;
+  auto* mesh = app.add_subcommand("mesh", "Summarise a mesh (.geo or .msh) and its physical groups");
+  mesh->add_option("FILE", mesh_file, "a gmsh .geo or .msh (2.2 or 4.1) file")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "cdyn: error: " << e.what() << " (see cdyn --help)\n";
+    return 2;
+  }
+
+  try {
+    if (*mesh) return cdyn::app::cmd_mesh(mesh_file);
+  } catch (const cdyn::InputError& e) {
+    std::cerr << "cdyn: error: " << e.what() << "\n";
+    return 2;
+  } catch (const cdyn::NumericalError& e) {
+    std::cerr << "cdyn: numerical failure: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,151 @@
+// assembly.cpp — cell-by-cell assembly of A, B, C and L.
+//
+// Every routine follows the same three steps: tabulate the reference basis at the
+// quadrature points once, then for each cell map the gradients with J⁻ᵀ and the
+// weights with |det J|, and scatter the local matrix into triplets.
+#include "cdyn/assembly.hpp"
+
+#include <vector>
+
+#include "cdyn/cell_geometry.hpp"
+#include "cdyn/error.hpp"
+#include "cdyn/quadrature.hpp"
+
+namespace cdyn {
+
+namespace {
+
+using Grad = std::array<double, 2>;
+
+// Reference basis values and gradients at every quadrature point.
+struct Tabulation {
+  int n = 0;                                  // local dofs
+  std::vector<std::vector<double>> value;     // [q][k]
+  std::vector<std::vector<Grad>> gradient;    // [q][k]
+  Tabulation(const FESpace& V, const QuadratureRule& q) : n(V.local_dofs()) {
+    for (const auto& xi : q.points) {
+      value.emplace_back(n);
+      gradient.emplace_back(n);
+      shape_values(V.element(), V.dim(), xi, value.back().data());
+      shape_gradients(V.element(), V.dim(), xi, gradient.back().data());
+    }
+  }
+};
+
+SparseMatrix from_triplets(int rows, int cols, const std::vector<Eigen::Triplet<double>>& t) {
+  SparseMatrix M(rows, cols);
+  M.setFromTriplets(t.begin(), t.end());
+  M.makeCompressed();
+  return M;
+}
+
+}  // namespace
+
+SparseMatrix assemble_mass(const FESpace& R, const FESpace& W) {
+  if (&R.mesh() != &W.mesh()) throw InputError("assemble_mass: the two spaces must share one mesh");
+  if (R.components() != W.components()) throw InputError("assemble_mass: the spaces differ in components");
+  const QuadratureRule q = cell_quadrature(W.dim(), R.degree() + W.degree());
+  const Tabulation tr(R, q), tw(W, q);
+  const int nc = R.components();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * tr.n * tw.n * nc);
+  std::vector<double> local(tr.n * tw.n);
+  for (int c = 0; c < W.mesh().n_cells(); ++c) {
+    const double detJ = CellGeometry(W.mesh(), c).det;
+    std::fill(local.begin(), local.end(), 0.0);
+    for (int p = 0; p < q.size(); ++p)
+      for (int i = 0; i < tr.n; ++i)
+        for (int j = 0; j < tw.n; ++j) local[i * tw.n + j] += q.weights[p] * detJ * tr.value[p][i] * tw.value[p][j];
+    const auto ri = R.cell_dofs(c), wj = W.cell_dofs(c);
+    for (int i = 0; i < tr.n; ++i)
+      for (int j = 0; j < tw.n; ++j)
+        for (int k = 0; k < nc; ++k) t.emplace_back(R.dof(ri[i], k), W.dof(wj[j], k), local[i * tw.n + j]);
+  }
+  return from_triplets(R.n_dofs(), W.n_dofs(), t);
+}
+
+SparseMatrix assemble_laplace(const FESpace& W) {
+  if (W.components() != 1) throw InputError("assemble_laplace: a scalar space is expected");
+  const QuadratureRule q = cell_quadrature(W.dim(), 2 * (W.degree() - 1));
+  const Tabulation tw(W, q);
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * tw.n * tw.n);
+  std::vector<Grad> g(tw.n);
+  std::vector<double> local(tw.n * tw.n);
+  for (int c = 0; c < W.mesh().n_cells(); ++c) {
+    const CellGeometry K(W.mesh(), c);
+    std::fill(local.begin(), local.end(), 0.0);
+    for (int p = 0; p < q.size(); ++p) {
+      for (int i = 0; i < tw.n; ++i) g[i] = K.gradient(tw.gradient[p][i]);
+      const double w = q.weights[p] * K.det;
+      for (int i = 0; i < tw.n; ++i)
+        for (int j = 0; j < tw.n; ++j) local[i * tw.n + j] += w * (g[i][0] * g[j][0] + g[i][1] * g[j][1]);
+    }
+    const auto d = W.cell_dofs(c);
+    for (int i = 0; i < tw.n; ++i)
+      for (int j = 0; j < tw.n; ++j) t.emplace_back(d[i], d[j], local[i * tw.n + j]);
+  }
+  return from_triplets(W.n_dofs(), W.n_dofs(), t);
+}
+
+SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu) {
+  if (W.components() != 2 || W.dim() != 2)
+    throw InputError("assemble_elasticity: a 2-component space on a 2D mesh is expected");
+  const QuadratureRule q = cell_quadrature(2, 2 * (W.degree() - 1));
+  const Tabulation tw(W, q);
+  const int n = tw.n, m = 2 * n;  // local vector dofs: (scalar i, component k) -> 2i + k
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * m * m);
+  std::vector<Grad> g(n);
+  std::vector<double> local(m * m);
+  for (int c = 0; c < W.mesh().n_cells(); ++c) {
+    const CellGeometry K(W.mesh(), c);
+    std::fill(local.begin(), local.end(), 0.0);
+    for (int p = 0; p < q.size(); ++p) {
+      for (int i = 0; i < n; ++i) g[i] = K.gradient(tw.gradient[p][i]);
+      const double w = q.weights[p] * K.det;
+      // For φ = ψ e_k: div φ = ∂_k ψ and ε(φ)_ab = ½(δ_ak ∂_b ψ + δ_bk ∂_a ψ), so
+      // ε(ψ_i e_k) : ε(ψ_j e_l) = ½ (δ_kl ∇ψ_i·∇ψ_j + ∂_l ψ_i ∂_k ψ_j).
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          const double gg = g[i][0] * g[j][0] + g[i][1] * g[j][1];
+          for (int k = 0; k < 2; ++k)
+            for (int l = 0; l < 2; ++l) {
+              const double eps = 0.5 * ((k == l ? gg : 0.0) + g[i][l] * g[j][k]);
+              local[(2 * i + k) * m + 2 * j + l] += w * (lambda * g[i][k] * g[j][l] + 2.0 * mu * eps);
+            }
+        }
+    }
+    const auto d = W.cell_dofs(c);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < 2; ++k)
+          for (int l = 0; l < 2; ++l) t.emplace_back(W.dof(d[i], k), W.dof(d[j], l), local[(2 * i + k) * m + 2 * j + l]);
+  }
+  return from_triplets(W.n_dofs(), W.n_dofs(), t);
+}
+
+Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t) {
+  if (static_cast<int>(f.size()) != W.components()) throw InputError("assemble_load: one field per component expected");
+  const QuadratureRule q = cell_quadrature(W.dim(), 2 * W.degree() + 2);
+  const Tabulation tw(W, q);
+  Eigen::VectorXd L = Eigen::VectorXd::Zero(W.n_dofs());
+  for (int c = 0; c < W.mesh().n_cells(); ++c) {
+    const CellGeometry K(W.mesh(), c);
+    const auto d = W.cell_dofs(c);
+    for (int p = 0; p < q.size(); ++p) {
+      const Point x = K.map(q.points[p]);
+      for (int k = 0; k < W.components(); ++k) {
+        const double fw = f[k](x.x, x.y, t) * q.weights[p] * K.det;
+        for (int i = 0; i < tw.n; ++i) L[W.dof(d[i], k)] += fw * tw.value[p][i];
+      }
+    }
+  }
+  return L;
+}
+
+Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t) {
+  return assemble_load(W, std::vector<Field>{f}, t);
+}
+
+}  // namespace cdyn

@@ -1,0 +1,49 @@
+// element.hpp — the reference finite elements P0, P1, P1+ and P2 on intervals and
+// triangles: their local basis functions and reference gradients.
+//
+// Everything is written in barycentric coordinates of the reference cell:
+//   triangle  λ0 = 1 − ξ − η, λ1 = ξ, λ2 = η;     interval  λ0 = 1 − ξ, λ1 = ξ.
+// Local dof order: the vertex functions first (local vertex k is dof k), then
+//   P1+ : the bubble b = 27 λ0λ1λ2 (triangle) or 4 λ0λ1 (interval), equal to 1 at the
+//         centroid.  The space is P1 ⊕ span{b} with the P1 hat functions unchanged
+//         (a hierarchical basis: the vertex coefficients are the vertex values, which
+//         is what the constraints u(a_i) ≥ g(a_i) act on);
+//   P2  : vertex functions λi(2λi − 1), then the edge functions 4 λiλj for the edges
+//         (0,1), (1,2), (2,0) (triangle) or the midpoint (interval);
+//   P0  : the constant 1 (one dof, attached to the cell).
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace cdyn {
+
+enum class Element { P0, P1, P1Bubble, P2 };
+
+// "P0", "P1", "P1+", "P2".
+std::string to_string(Element e);
+
+// Parses "P0", "P1", "P1+" (also "P1b", FreeFEM's name), "P2"; throws InputError.
+Element element_from_string(const std::string& name);
+
+// Number of local (scalar) basis functions on a cell of dimension dim.
+int local_dofs(Element e, int dim);
+
+// Polynomial degree of the local space (a bubble raises P1+ to dim + 1).
+int polynomial_degree(Element e, int dim);
+
+// Whether the element is continuous across cells (all but P0).
+inline bool is_continuous(Element e) { return e != Element::P0; }
+
+// The local basis at reference point xi: values[k] = φ_k(xi).
+void shape_values(Element e, int dim, const std::array<double, 2>& xi, double* values);
+
+// Reference gradients: grads[k] = ∇_ξ φ_k(xi) (second entry 0 in 1D).
+void shape_gradients(Element e, int dim, const std::array<double, 2>& xi,
+                     std::array<double, 2>* grads);
+
+// The nodal point of local dof k in reference coordinates (vertex, edge midpoint,
+// centroid for the bubble and for P0).
+std::array<double, 2> local_node(Element e, int dim, int k);
+
+}  // namespace cdyn

@@ -1,0 +1,81 @@
+// mesh.hpp — simplicial meshes in 1D (intervals) and 2D (triangles).
+//
+// A mesh is geometry and topology only: vertex coordinates, cells given by their
+// vertices, and the boundary facets (points in 1D, edges in 2D), each facet tagged
+// with the boundary part it belongs to.  It knows nothing of finite elements.
+//
+// Conventions
+//  - Coordinates are stored as (x, y); a 1D mesh has y = 0 everywhere.
+//  - A cell has dim + 1 vertices, stored in cells[c][0..dim]; in 2D they are in
+//    counter-clockwise order (positive Jacobian), in 1D left to right.
+//  - Boundary parts have names ("left", "bottom", or a gmsh physical group name).
+//    A facet on the topological boundary that belongs to no named part has part -1.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace cdyn {
+
+struct Point {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+struct BoundaryFacet {
+  std::array<int, 2> vertices{-1, -1};  // 1D: only vertices[0] is used
+  int part = -1;                        // index into Mesh::part_names, or -1
+};
+
+struct Mesh {
+  int dim = 2;                                 // 1 (intervals) or 2 (triangles)
+  std::vector<Point> vertices;                 // coordinates
+  std::vector<std::array<int, 3>> cells;       // 1D: entries [0], [1] only
+  std::vector<BoundaryFacet> boundary;         // every boundary facet, tagged
+  std::vector<std::string> part_names;         // boundary part names
+  std::vector<int> cell_region;                // region tag of each cell (gmsh physical surface), or empty
+  std::vector<std::string> region_names;       // names of those regions
+
+  int n_vertices() const { return static_cast<int>(vertices.size()); }
+  int n_cells() const { return static_cast<int>(cells.size()); }
+  int vertices_per_cell() const { return dim + 1; }
+
+  // Index of a boundary part by name; throws InputError naming the part if absent.
+  int part_index(const std::string& name) const;
+
+  // The vertices lying on the named boundary parts (sorted, unique).
+  std::vector<int> part_vertices(const std::vector<int>& parts) const;
+
+  // Signed measure of a cell: its length (1D) or area (2D, positive for CCW cells).
+  double cell_measure(int c) const;
+
+  // Sum of the cell measures: |Omega|.
+  double measure() const;
+
+  // Largest cell diameter h.
+  double h_max() const;
+
+  // Tags every facet on the topological boundary (a facet seen by exactly one cell)
+  // that is not yet in `boundary`, with part -1.  Readers call it after adding the
+  // named facets they know.
+  void complete_boundary();
+
+  // Throws InputError (prefixed by `source`) if cells reference missing vertices,
+  // have non-positive measure, or the mesh is empty.
+  void check(const std::string& source) const;
+};
+
+// Built-in structured meshes (the DESIGN.md `mesh.kind` values).
+
+// [0, length] split into n equal intervals; boundary parts "left" (x = 0) and
+// "right" (x = length).
+Mesh interval_mesh(int n, double length = 1.0);
+
+// The unit square (or [0,lx]x[0,ly]) with n x n cells, each split along its
+// lower-left to upper-right diagonal into two triangles, as FreeFEM's square(n,n).
+// Vertex numbering is row by row from (0,0), as FreeFEM's.  Boundary parts
+// "bottom", "right", "top", "left" (FreeFEM labels 1, 2, 3, 4).
+Mesh unit_square_mesh(int n, double lx = 1.0, double ly = 1.0);
+
+}  // namespace cdyn

@@ -1,0 +1,22 @@
+// norms.hpp — errors of a finite element function against an exact solution.
+//
+//   ‖u − u_h‖_L2 = (∫ (u − u_h)²)^½,   |u − u_h|_H1 = (∫ |∇u − ∇u_h|²)^½,
+// integrated cell by cell with a rule of degree 2·deg + 4, well above the
+// polynomial part, so that the quadrature error does not pollute measured rates.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+
+#include "cdyn/fe_space.hpp"
+
+namespace cdyn {
+
+// Gradient of a scalar field, (∂x u, ∂y u)(x, y, t).
+using GradientField = std::function<std::array<double, 2>(double x, double y, double t)>;
+
+double l2_error(const FESpace& W, const Eigen::VectorXd& U, const Field& u, double t = 0.0);
+double h1_seminorm_error(const FESpace& W, const Eigen::VectorXd& U, const GradientField& grad_u, double t = 0.0);
+
+}  // namespace cdyn

@@ -1,0 +1,171 @@
+// test_assembly.cpp — identities the matrices A, B, C and L must satisfy.
+//
+// Tolerances: these are exact identities of exactly integrated polynomials, so they
+// hold to round-off; 1e-13 relative to the matrix/vector scale leaves a margin of
+// ~100 ulps for the sums over cells.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+
+#include "cdyn/assembly.hpp"
+#include "cdyn/dirichlet.hpp"
+
+using namespace cdyn;
+
+namespace {
+
+// The structured square with its interior vertices moved by a fixed pseudo-random
+// amount (at most 0.25 h), so that no identity holds by symmetry of the grid alone.
+Mesh perturbed_square(int n) {
+  Mesh m = unit_square_mesh(n);
+  const double h = 1.0 / n;
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) {
+      Point& p = m.vertices[i + j * (n + 1)];
+      p.x += 0.25 * h * std::sin(12.9898 * i + 78.233 * j);
+      p.y += 0.25 * h * std::cos(39.3468 * i + 11.135 * j);
+    }
+  return m;
+}
+
+double sym_defect(const SparseMatrix& A) {
+  const SparseMatrix D = SparseMatrix(A.transpose()) - A;
+  return D.norm() / A.norm();
+}
+
+Eigen::VectorXd eigenvalues(const SparseMatrix& A) {
+  const Eigen::MatrixXd dense(A);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense);
+  return eig.eigenvalues();  // ascending
+}
+
+struct Pair {
+  Element W, H;
+};
+const Pair kPairs[] = {{Element::P1, Element::P1},       {Element::P1, Element::P0}, {Element::P1Bubble, Element::P0},
+                       {Element::P1Bubble, Element::P1}, {Element::P2, Element::P1}, {Element::P2, Element::P0}};
+
+const Field one = [](double, double, double) { return 1.0; };
+
+}  // namespace
+
+TEST(Assembly, P1MassSumsToTheArea) {
+  for (const Mesh& m : {unit_square_mesh(7, 2.0, 3.0), perturbed_square(9), interval_mesh(13, 2.5)}) {
+    const FESpace W(m, Element::P1);
+    const SparseMatrix C = assemble_mass(W, W);
+    EXPECT_NEAR(C.sum(), m.measure(), 1e-13 * m.measure());
+  }
+  EXPECT_NEAR(unit_square_mesh(7, 2.0, 3.0).measure(), 6.0, 1e-13);
+  EXPECT_NEAR(perturbed_square(9).measure(), 1.0, 1e-13);
+}
+
+TEST(Assembly, BTimesOneIsTheIntegralOfEachVelocityBasisFunction) {
+  // Σ_j B_ij 1_j = ∫ ψ_i · 1, with 1_W the coefficients of the constant function 1 in
+  // W^h (ones on vertex/edge dofs, zero on the hierarchical bubbles).
+  for (const Mesh& m : {perturbed_square(6), interval_mesh(9, 2.0)})
+    for (const Pair& p : kPairs)
+      for (int comps : {1, 2}) {
+        if (comps == 2 && m.dim == 1) continue;
+        const FESpace W(m, p.W, comps), H(m, p.H, comps);
+        const SparseMatrix B = assemble_mass(H, W);
+        ASSERT_EQ(B.rows(), H.n_dofs());
+        ASSERT_EQ(B.cols(), W.n_dofs());
+        const std::vector<Field> ones(comps, one);
+        const Eigen::VectorXd lhs = B * W.interpolate(ones);
+        const Eigen::VectorXd rhs = assemble_load(H, ones);
+        EXPECT_LE((lhs - rhs).lpNorm<Eigen::Infinity>(), 1e-14 * m.measure())
+            << to_string(p.W) << "/" << to_string(p.H) << " dim " << m.dim << " comps " << comps;
+        EXPECT_NEAR(rhs.sum(), comps * m.measure(), 1e-13);
+      }
+}
+
+TEST(Assembly, P0MassIsTheDiagonalOfCellMeasures) {
+  const Mesh m = perturbed_square(5);
+  const FESpace H(m, Element::P0);
+  const SparseMatrix C = assemble_mass(H, H);
+  EXPECT_EQ(C.nonZeros(), m.n_cells());
+  for (int c = 0; c < m.n_cells(); ++c) EXPECT_NEAR(C.coeff(c, c), m.cell_measure(c), 1e-16);
+}
+
+TEST(Assembly, ReferenceTriangleP1Stiffness) {
+  Mesh m;
+  m.vertices = {{0, 0}, {1, 0}, {0, 1}};
+  m.cells = {{0, 1, 2}};
+  const FESpace W(m, Element::P1);
+  const Eigen::MatrixXd A = Eigen::MatrixXd(assemble_laplace(W));
+  Eigen::Matrix3d expected;
+  expected << 1.0, -0.5, -0.5, -0.5, 0.5, 0.0, -0.5, 0.0, 0.5;
+  EXPECT_LE((A - expected).norm(), 1e-15);
+  // The bubble mass: ∫_T (27λ0λ1λ2)² = 729 · 2|T| · 2!2!2!/8! = 81/560 on |T| = 1/2.
+  const FESpace Wb(m, Element::P1Bubble);
+  EXPECT_NEAR(assemble_mass(Wb, Wb).coeff(3, 3), 729.0 * 8.0 / 40320.0, 1e-15);
+}
+
+TEST(Assembly, MassAndStiffnessAreSymmetric) {
+  const Mesh m = perturbed_square(5);
+  for (Element e : {Element::P1, Element::P1Bubble, Element::P2}) {
+    const FESpace W(m, e), V(m, e, 2);
+    EXPECT_LE(sym_defect(assemble_mass(W, W)), 1e-15) << to_string(e);
+    EXPECT_LE(sym_defect(assemble_laplace(W)), 1e-15) << to_string(e);
+    EXPECT_LE(sym_defect(assemble_elasticity(V, 2.0, 1.5)), 1e-15) << to_string(e);
+  }
+}
+
+TEST(Assembly, MassIsPositiveDefinite) {
+  const Mesh m = perturbed_square(3);
+  for (Element e : {Element::P0, Element::P1, Element::P1Bubble, Element::P2}) {
+    const FESpace W(m, e);
+    EXPECT_GT(eigenvalues(assemble_mass(W, W))[0], 0.0) << to_string(e);
+  }
+}
+
+TEST(Assembly, NeumannLaplacianKernelIsTheConstants) {
+  for (const Mesh& m : {perturbed_square(3), interval_mesh(6)})
+    for (Element e : {Element::P1, Element::P1Bubble, Element::P2}) {
+      const FESpace W(m, e);
+      const SparseMatrix A = assemble_laplace(W);
+      EXPECT_LE((A * W.interpolate(one)).norm(), 1e-13 * A.norm()) << to_string(e);
+      const Eigen::VectorXd ev = eigenvalues(A);
+      EXPECT_LE(std::abs(ev[0]), 1e-12 * ev[ev.size() - 1]) << to_string(e);
+      EXPECT_GT(ev[1], 1e-4 * ev[ev.size() - 1]) << to_string(e) << ": kernel larger than the constants";
+    }
+}
+
+TEST(Assembly, ElasticityKernelIsTheRigidMotions) {
+  const Mesh m = perturbed_square(3);
+  const std::vector<std::vector<Field>> rigid = {
+      {one, [](double, double, double) { return 0.0; }},
+      {[](double, double, double) { return 0.0; }, one},
+      {[](double, double y, double) { return -y; }, [](double x, double, double) { return x; }}};
+  for (Element e : {Element::P1, Element::P1Bubble, Element::P2}) {
+    const FESpace W(m, e, 2);
+    const SparseMatrix A = assemble_elasticity(W, 3.0, 1.0);
+    for (const auto& r : rigid) EXPECT_LE((A * W.interpolate(r)).norm(), 1e-13 * A.norm()) << to_string(e);
+    const Eigen::VectorXd ev = eigenvalues(A);
+    const double top = ev[ev.size() - 1];
+    for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(ev[k]), 1e-12 * top) << to_string(e);
+    EXPECT_GT(ev[3], 1e-5 * top) << to_string(e) << ": kernel larger than the rigid motions";
+  }
+}
+
+TEST(Assembly, ElasticityPassesThePatchTest) {
+  // A linear displacement with zero body force is an exact solution of plane-strain
+  // elasticity; prescribed on the whole boundary, every space containing P1 must
+  // reproduce it to round-off (condition number × ε ≈ 1e-12 here).
+  const Mesh m = perturbed_square(6);
+  const std::vector<Field> u = {[](double x, double y, double) { return 0.1 + 0.02 * x - 0.03 * y; },
+                                [](double x, double y, double) { return -0.2 + 0.05 * x + 0.01 * y; }};
+  std::vector<int> all_parts = {0, 1, 2, 3};
+  for (Element e : {Element::P1, Element::P1Bubble, Element::P2}) {
+    const FESpace W(m, e, 2);
+    const SparseMatrix A = assemble_elasticity(W, 2.0, 0.7);
+    const DirichletLift bc(W, all_parts);
+    const Eigen::VectorXd UD = bc.lifting(W, u);
+    Eigen::SimplicialLDLT<SparseMatrix> solver(bc.restrict(A));
+    ASSERT_EQ(solver.info(), Eigen::Success);
+    const Eigen::VectorXd U = bc.extend(solver.solve(bc.restrict(Eigen::VectorXd(-(A * UD)))), UD);
+    EXPECT_LE((U - W.interpolate(u)).lpNorm<Eigen::Infinity>(), 1e-12) << to_string(e);
+  }
+}
