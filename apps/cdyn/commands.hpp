@@ -1,13 +1,33 @@
 // commands.hpp — the subcommands of the `cdyn` command line (one file each).
 // Each returns the process exit status; bad input is thrown as cdyn::InputError and
-// turned into one line and exit status 2 by main().
+// turned into one line and exit status 2 by main(), numerical failure as
+// cdyn::NumericalError (exit status 3).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace cdyn::app {
 
+struct Simulation;
+
 // `cdyn mesh FILE.geo|FILE.msh`: counts, measure, h and the physical groups.
 int cmd_mesh(const std::string& file);
+
+// `cdyn run [SCENE.toml] [--out DIR] [--set key=value]... [--quiet]`.
+struct RunOptions {
+  std::string scene;               // empty: the embedded default scene
+  std::string out;                 // empty: out/<scene name>
+  std::vector<std::string> sets;   // key=value overrides
+  bool quiet = false;
+};
+int cmd_run(const RunOptions& options);
+
+// Condition (12) for a simulation's pair and constraints, as summary.json's
+// "wellposed" entry ({"beta", "satisfied"}, or why it was not computed), and as a
+// phrase for the final paragraph.
+nlohmann::ordered_json wellposedness_summary(const Simulation& sim);
+std::string wellposedness_line(const nlohmann::ordered_json& entry);
 
 }  // namespace cdyn::app

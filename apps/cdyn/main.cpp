@@ -15,6 +15,13 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("cdyn ") + cdyn::version);
   app.require_subcommand(1);
 
+  cdyn::app::RunOptions run_options;
+  auto* run = app.add_subcommand("run", "Integrate a scene in time (no scene: the seed's membrane experiment)");
+  run->add_option("SCENE", run_options.scene, "a scene file (.toml)");
+  run->add_option("--out", run_options.out, "output directory (default out/<scene name>)");
+  run->add_option("--set", run_options.sets, "override a scene key, e.g. --set time.dt=0.002")->allow_extra_args(false);
+  run->add_flag("--quiet", run_options.quiet, "no progress line and no final summary");
+
   std::string mesh_file;
   auto* mesh = app.add_subcommand("mesh", "Summarise a mesh (.geo or .msh) and its physical groups");
   mesh->add_option("FILE", mesh_file, "a gmsh .geo or .msh (2.2 or 4.1) file")->required();
@@ -33,6 +40,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*run) return cdyn::app::cmd_run(run_options);
     if (*mesh) return cdyn::app::cmd_mesh(mesh_file);
   } catch (const cdyn::InputError& e) {
     std::cerr << "cdyn: error: " << e.what() << "\n";

@@ -1,0 +1,82 @@
+// cmd_mesh.cpp — `cdyn mesh FILE.geo|FILE.msh`: what cdyn makes of a gmsh file.
+//
+// Prints the dimension, the vertex / cell / boundary-facet counts, the measure of the
+// domain and h_max, then each physical group cdyn uses with its dimension, name and
+// number of cells or facets.  Everything is counted on the cdyn::Mesh itself (not on
+// the gmsh model), so the summary shows exactly what a scene using this file gets.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cdyn/gmsh_mesh.hpp"
+#include "cdyn/mesh.hpp"
+#include "commands.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+struct GroupRow {
+  int dim;
+  std::string name;
+  int count;
+};
+
+}  // namespace
+
+int cmd_mesh(const std::string& file) {
+  const Mesh mesh = read_mesh(file);  // throws InputError on bad input
+
+  const bool two_d = mesh.dim == 2;
+  // "1 triangle", "2 triangles"
+  auto cells_word = [two_d](std::size_t n) {
+    return std::string(two_d ? "triangle" : "interval") + (n == 1 ? "" : "s");
+  };
+  auto facets_word = [two_d](std::size_t n) {
+    return std::string(two_d ? "edge" : "point") + (n == 1 ? "" : "s");
+  };
+
+  // Cells per region (physical group of the top dimension) and facets per boundary
+  // part (physical group of dimension dim - 1); part -1 is the untagged boundary.
+  std::vector<int> cells_in(mesh.region_names.size(), 0);
+  for (int r : mesh.cell_region)
+    if (r >= 0) ++cells_in[r];
+  std::vector<int> facets_in(mesh.part_names.size(), 0);
+  int untagged = 0;
+  for (const auto& f : mesh.boundary) {
+    if (f.part >= 0)
+      ++facets_in[f.part];
+    else
+      ++untagged;
+  }
+
+  std::vector<GroupRow> rows;
+  for (std::size_t r = 0; r < mesh.region_names.size(); ++r)
+    rows.push_back({mesh.dim, mesh.region_names[r], cells_in[r]});
+  for (std::size_t p = 0; p < mesh.part_names.size(); ++p)
+    rows.push_back({mesh.dim - 1, mesh.part_names[p], facets_in[p]});
+
+  std::printf("%s: %dD mesh\n", file.c_str(), mesh.dim);
+  std::printf("  vertices         %d\n", mesh.n_vertices());
+  std::printf("  cells            %d %s\n", mesh.n_cells(), cells_word(mesh.n_cells()).c_str());
+  std::printf("  boundary facets  %zu %s (%d in no physical group)\n", mesh.boundary.size(),
+              facets_word(mesh.boundary.size()).c_str(), untagged);
+  std::printf("  %-16s %.12g\n", two_d ? "area" : "length", mesh.measure());
+  std::printf("  h_max            %.6g\n", mesh.h_max());
+
+  if (rows.empty()) {
+    std::printf("physical groups: none\n");
+    return 0;
+  }
+  std::size_t width = 4;
+  for (const auto& row : rows) width = std::max(width, row.name.size());
+  std::printf("physical groups\n");
+  std::printf("  dim  %-*s  count\n", static_cast<int>(width), "name");
+  for (const auto& row : rows)
+    std::printf("  %-3d  %-*s  %d %s\n", row.dim, static_cast<int>(width), row.name.c_str(),
+                row.count, (row.dim == mesh.dim ? cells_word(row.count) : facets_word(row.count)).c_str());
+  return 0;
+}
+
+}  // namespace cdyn::app

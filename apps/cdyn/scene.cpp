@@ -1,0 +1,239 @@
+// scene.cpp — reading, validating and overriding scene files.
+#include "scene.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "cdyn/error.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+// Every key a scene may contain.  Tables under "output.probes" hold user names.
+const std::set<std::string> kKnownKeys = {
+    "name",           "description",
+    "mesh.kind",      "mesh.n",         "mesh.length",     "mesh.file",
+    "physics.model",  "physics.E",      "physics.rho",     "physics.tension", "physics.f",
+    "dirichlet.parts", "dirichlet.value",
+    "obstacle.enabled", "obstacle.where", "obstacle.g",
+    "initial.u",      "initial.v",
+    "method.pair",    "method.mass",
+    "time.scheme",    "time.dt",        "time.T",
+    "solver.name",    "solver.tol",     "solver.max_iterations",
+    "output.every",   "output.probes",
+};
+const std::set<std::string> kFreeTables = {"output.probes"};
+
+bool is_known_table(const std::string& prefix) {
+  return std::any_of(kKnownKeys.begin(), kKnownKeys.end(),
+                     [&](const std::string& k) { return k.rfind(prefix + ".", 0) == 0; });
+}
+
+std::string type_name(const toml::node& n) {
+  std::ostringstream s;
+  s << n.type();
+  return s.str();
+}
+
+}  // namespace
+
+const char* default_scene_text() {
+  return R"(# The seed's membrane experiment (Renard, "A class of well-posed new approximations",
+# numerical experiments): a membrane over an obstacle, falling under its own weight.
+#   u_tt - Laplace(u) = f on the unit square, u = 0.02 on the boundary and at t = 0,
+#   u >= 0 at the vertices, P1+/P0, midpoint scheme with the constraint on the half step.
+name = "membrane"
+[mesh]
+kind = "unit_square"
+n = 20
+[physics]
+model = "membrane"
+f = "-0.6"
+[dirichlet]
+parts = "all"
+value = "0.02"
+[obstacle]
+where = "vertices"
+g = "0"
+[initial]
+u = "0.02"
+v = "0"
+[method]
+pair = "P1+/P0"
+[time]
+scheme = "midpoint"
+dt = 0.001
+T = 0.8
+[solver]
+name = "pdas"
+tol = 1e-12
+[output]
+every = 20
+probes = { centre = [0.5, 0.5] }
+)";
+}
+
+Scene Scene::from_string(const std::string& text, const std::string& source) {
+  Scene s;
+  s.source_ = source;
+  try {
+    s.table_ = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    const auto& b = e.source().begin;
+    throw InputError(source + ":" + std::to_string(b.line) + ":" + std::to_string(b.column) + ": " +
+                     std::string(e.description()));
+  }
+  s.validate(s.table_, "");
+  s.name_ = s.string("name", std::filesystem::path(source).stem().string());
+  return s;
+}
+
+Scene Scene::load(const std::string& path) {
+  if (path.empty()) return from_string(default_scene_text(), "default");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": no such scene file");
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(path + ": cannot read the scene file");
+  return from_string(text.str(), path);
+}
+
+void Scene::validate(const toml::table& t, const std::string& prefix) const {
+  for (const auto& [k, node] : t) {
+    const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    if (kFreeTables.count(key)) continue;
+    if (node.is_table() && is_known_table(key)) {
+      validate(*node.as_table(), key);
+    } else if (!kKnownKeys.count(key)) {
+      throw InputError(source_ + ": unknown key '" + key + "'");
+    }
+  }
+}
+
+void Scene::set(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError("--set " + assignment + ": expected key=value");
+  const std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+  if (!kKnownKeys.count(key)) throw InputError("--set: unknown key '" + key + "'");
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    parsed.insert("v", value);  // a bare word: take it as a string
+  }
+  // Walk (and create) the tables of the dotted path, then replace the leaf.
+  toml::table* t = &table_;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1) {
+    const std::string part = key.substr(start, dot - start);
+    auto [it, inserted] = t->insert(part, toml::table{});
+    if (!it->second.is_table()) throw InputError("--set " + key + ": '" + part + "' is not a table");
+    t = it->second.as_table();
+  }
+  t->insert_or_assign(key.substr(start), *parsed.get("v"));
+  if (key == "name") name_ = value;
+}
+
+const toml::node* Scene::find(const std::string& key) const {
+  return table_.at_path(key).node();
+}
+
+bool Scene::has(const std::string& key) const { return find(key) != nullptr; }
+
+double Scene::number(const std::string& key, std::optional<double> fallback) const {
+  const toml::node* n = find(key);
+  if (!n) {
+    if (fallback) return *fallback;
+    throw InputError(source_ + ": missing key '" + key + "'");
+  }
+  if (auto v = n->value<double>()) return *v;  // integers convert too
+  throw InputError(key + ": expected a number, got " + type_name(*n));
+}
+
+int Scene::integer(const std::string& key, std::optional<int> fallback) const {
+  const toml::node* n = find(key);
+  if (!n) {
+    if (fallback) return *fallback;
+    throw InputError(source_ + ": missing key '" + key + "'");
+  }
+  if (auto v = n->value_exact<int64_t>()) return static_cast<int>(*v);
+  throw InputError(key + ": expected an integer, got " + type_name(*n));
+}
+
+bool Scene::boolean(const std::string& key, std::optional<bool> fallback) const {
+  const toml::node* n = find(key);
+  if (!n) {
+    if (fallback) return *fallback;
+    throw InputError(source_ + ": missing key '" + key + "'");
+  }
+  if (auto v = n->value_exact<bool>()) return *v;
+  throw InputError(key + ": expected true or false, got " + type_name(*n));
+}
+
+std::string Scene::string(const std::string& key, std::optional<std::string> fallback) const {
+  const toml::node* n = find(key);
+  if (!n) {
+    if (fallback) return *fallback;
+    throw InputError(source_ + ": missing key '" + key + "'");
+  }
+  if (auto v = n->value_exact<std::string>()) return *v;
+  // Numbers given where an expression is expected ("f = -0.6" or --set physics.f=1)
+  if (auto v = n->value<double>()) {
+    std::ostringstream s;
+    s.precision(17);
+    s << *v;
+    return s.str();
+  }
+  throw InputError(key + ": expected a string, got " + type_name(*n));
+}
+
+std::vector<std::string> Scene::strings(const std::string& key, std::vector<std::string> fallback) const {
+  const toml::node* n = find(key);
+  if (!n) return fallback;
+  if (auto v = n->value_exact<std::string>()) return {*v};
+  std::vector<std::string> out;
+  if (const toml::array* a = n->as_array()) {
+    for (const auto& e : *a) {
+      auto v = e.value_exact<std::string>();
+      if (!v) throw InputError(key + ": expected a list of strings");
+      out.push_back(*v);
+    }
+    return out;
+  }
+  throw InputError(key + ": expected a string or a list of strings, got " + type_name(*n));
+}
+
+std::vector<double> Scene::numbers(const std::string& key) const {
+  const toml::node* n = find(key);
+  const toml::array* a = n ? n->as_array() : nullptr;
+  if (!a) throw InputError(key + ": expected a list of numbers");
+  std::vector<double> out;
+  for (const auto& e : *a) {
+    auto v = e.value<double>();
+    if (!v) throw InputError(key + ": expected a list of numbers");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+std::vector<std::string> Scene::keys(const std::string& table) const {
+  std::vector<std::string> out;
+  const toml::node* n = find(table);
+  if (!n) return out;
+  const toml::table* t = n->as_table();
+  if (!t) throw InputError(table + ": expected a table");
+  for (const auto& [k, v] : *t) out.emplace_back(k.str());
+  return out;
+}
+
+std::string Scene::dump() const {
+  std::ostringstream s;
+  s << table_ << "\n";
+  return s.str();
+}
+
+}  // namespace cdyn::app

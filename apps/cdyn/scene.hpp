@@ -1,0 +1,55 @@
+// scene.hpp — a scene file (TOML, DESIGN.md §4) with its --set overrides.
+//
+// A scene is a TOML table whose every key must be known (a typo is an error, never
+// silently ignored).  --set key=value overrides any key by its dotted name; the value
+// is read as a TOML value (number, boolean, array, quoted string) and, failing that,
+// as a bare string (so --set time.scheme=backward_euler works).  Accessors name the
+// key in every error.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <toml++/toml.h>
+#include <vector>
+
+namespace cdyn::app {
+
+class Scene {
+ public:
+  // Reads a scene file; an empty path gives the embedded default scene (the seed's
+  // membrane experiment).
+  static Scene load(const std::string& path);
+  static Scene from_string(const std::string& text, const std::string& source);
+
+  // Applies one "key=value" override.
+  void set(const std::string& assignment);
+
+  const std::string& name() const { return name_; }
+  const std::string& source() const { return source_; }
+  bool has(const std::string& key) const;
+
+  double number(const std::string& key, std::optional<double> fallback = {}) const;
+  int integer(const std::string& key, std::optional<int> fallback = {}) const;
+  bool boolean(const std::string& key, std::optional<bool> fallback = {}) const;
+  std::string string(const std::string& key, std::optional<std::string> fallback = {}) const;
+  // A string or a list of strings.
+  std::vector<std::string> strings(const std::string& key, std::vector<std::string> fallback = {}) const;
+  std::vector<double> numbers(const std::string& key) const;
+  // The names under a table key (e.g. the probes of output.probes).
+  std::vector<std::string> keys(const std::string& table) const;
+
+  // The scene as TOML text (with overrides applied), written next to the results.
+  std::string dump() const;
+
+ private:
+  const toml::node* find(const std::string& key) const;
+  void validate(const toml::table& t, const std::string& prefix) const;
+
+  toml::table table_;
+  std::string name_, source_;
+};
+
+// The embedded default scene's text.
+const char* default_scene_text();
+
+}  // namespace cdyn::app

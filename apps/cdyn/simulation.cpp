@@ -1,0 +1,153 @@
+// simulation.cpp — scene keys → kernel structures.
+#include "simulation.hpp"
+
+#include <cmath>
+#include <regex>
+
+#include "cdyn/error.hpp"
+#include "cdyn/expression.hpp"
+#include "cdyn/gmsh_mesh.hpp"
+#include "cdyn/scalar_wave.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+Field expression(const Scene& s, const std::string& key, const std::string& fallback) {
+  return parse_expression(s.string(key, fallback), key);
+}
+
+// Whether an expression mentions the variable t (then the load is re-assembled each step).
+bool depends_on_time(const std::string& text) { return std::regex_search(text, std::regex(R"((^|[^A-Za-z0-9_])t($|[^A-Za-z0-9_]))")); }
+
+// "all" or a list of part names → part indices.
+std::vector<int> parts(const Mesh& mesh, const Scene& s, const std::string& key) {
+  std::vector<int> out;
+  for (const std::string& name : s.strings(key)) {
+    if (name == "all") {
+      for (std::size_t p = 0; p < mesh.part_names.size(); ++p) out.push_back(static_cast<int>(p));
+      // untagged boundary facets (part −1) are included too
+      out.push_back(-1);
+      continue;
+    }
+    try {
+      out.push_back(mesh.part_index(name));
+    } catch (const InputError& e) {
+      throw InputError(key + ": " + e.what());
+    }
+  }
+  return out;
+}
+
+// method.pair "W/H" or method.mass "consistent|lumped|redistributed" → (W element, mass spec).
+std::pair<Element, std::string> method(const Scene& s, Element default_w) {
+  if (s.has("method.pair") && s.has("method.mass")) throw InputError("method: give either pair or mass, not both");
+  if (s.has("method.mass")) {
+    const std::string m = s.string("method.mass");
+    if (m != "consistent" && m != "lumped" && m != "redistributed")
+      throw InputError("method.mass: unknown mass model '" + m + "' (consistent, lumped, redistributed)");
+    return {default_w, m};
+  }
+  const std::string pair = s.string("method.pair", "P1+/P0");
+  const auto slash = pair.find('/');
+  if (slash == std::string::npos) throw InputError("method.pair: expected W/H, e.g. P1+/P0 (got '" + pair + "')");
+  try {
+    const Element W = element_from_string(pair.substr(0, slash));
+    const Element H = element_from_string(pair.substr(slash + 1));
+    if (W == Element::P0) throw InputError("the displacement space must be continuous");
+    if (H == Element::P2) throw InputError("P2 velocities are not among the pairs (P0 or P1)");
+    return {W, to_string(H)};
+  } catch (const InputError& e) {
+    throw InputError("method.pair: " + std::string(e.what()));
+  }
+}
+
+}  // namespace
+
+Mesh make_mesh(const Scene& s) {
+  const std::string kind = s.string("mesh.kind");
+  if (kind == "interval") return interval_mesh(s.integer("mesh.n"), s.number("mesh.length", 1.0));
+  if (kind == "unit_square") return unit_square_mesh(s.integer("mesh.n"));
+  if (kind == "gmsh") return read_mesh(s.string("mesh.file"));
+  throw InputError("mesh.kind: unknown kind '" + kind + "' (interval, unit_square, gmsh)");
+}
+
+Simulation make_simulation(const Scene& s) {
+  Simulation sim;
+  sim.scene_name = s.name();
+  sim.mesh = std::make_unique<Mesh>(make_mesh(s));
+  const Mesh& mesh = *sim.mesh;
+
+  // Physics: the scalar problems (membrane, bar).
+  sim.model = s.string("physics.model");
+  if (sim.model != "membrane" && sim.model != "bar")
+    throw InputError("physics.model: '" + sim.model + "' is not available yet (membrane, bar)");
+  if (sim.model == "bar" && mesh.dim != 1) throw InputError("physics.model: the bar needs a 1D mesh (mesh.kind = interval)");
+  ScalarWaveData d;
+  const auto [W, velocity] = method(s, Element::P1);
+  d.displacement = W;
+  d.velocity = velocity;
+  sim.pair = s.has("method.mass") ? velocity : to_string(W) + "/" + velocity;
+  d.rho = s.number("physics.rho", 1.0);
+  d.kappa = sim.model == "bar" ? s.number("physics.E", 1.0) : s.number("physics.tension", 1.0);
+  const std::string f = s.string("physics.f", "0");
+  d.f = parse_expression(f, "physics.f");
+  d.load_is_constant = !depends_on_time(f);
+  d.dirichlet_parts = parts(mesh, s, "dirichlet.parts");
+  d.dirichlet_value = expression(s, "dirichlet.value", "0");
+  d.obstacle = s.boolean("obstacle.enabled", true);
+  const std::string where = s.string("obstacle.where", "vertices");
+  d.obstacle_on_all_vertices = where == "vertices";
+  if (!d.obstacle_on_all_vertices) d.obstacle_parts = parts(mesh, s, "obstacle.where");
+  d.obstacle_g = expression(s, "obstacle.g", "0");
+  sim.problem = build_scalar_wave(mesh, d);
+  sim.dirichlet_parts = d.dirichlet_parts;
+  for (int i : sim.problem.constrained)
+    sim.constrained_vertices.push_back(sim.problem.bc->free_dofs()[i]);  // scalar P1-type space: dof = vertex
+  ConstrainedProblem& p = sim.problem;
+
+  // Time and solver.
+  sim.dt = s.number("time.dt");
+  sim.T = s.number("time.T");
+  if (!(sim.dt > 0.0) || !std::isfinite(sim.dt)) throw InputError("time.dt: must be positive");
+  if (!(sim.T > 0.0) || !std::isfinite(sim.T)) throw InputError("time.T: must be positive");
+  sim.n_steps = static_cast<int>(std::ceil(sim.T / sim.dt - 1e-9));
+  sim.output_every = s.integer("output.every", 1);
+  if (sim.output_every < 1) throw InputError("output.every: must be at least 1");
+  sim.scheme_name = s.string("time.scheme", "midpoint");
+  sim.solver_name = s.string("solver.name", "pdas");
+  QPOptions options;
+  sim.tol = options.tol = s.number("solver.tol", 1e-10);
+  if (!(options.tol > 0.0)) throw InputError("solver.tol: must be positive");
+  options.max_iterations = s.integer("solver.max_iterations", 0);
+  try {
+    sim.solver = make_step_solver(sim.solver_name, options);
+  } catch (const InputError& e) {
+    throw InputError("solver.name: " + std::string(e.what()));
+  }
+  sim.scheme = make_time_scheme(sim.scheme_name, p, *sim.solver, sim.dt);
+
+  // Initial state: U⁰ must lie in K̄^h; V⁰ from C V⁰ = B U̇⁰.
+  const FESpace& Wh = *p.W;
+  sim.initial.U = p.bc->restrict(Wh.interpolate(expression(s, "initial.u", "0"), 0.0));
+  const double violation = p.max_violation(sim.initial.U);
+  if (violation > 1e-12)
+    throw InputError("initial.u: the initial state violates the obstacle (by " + std::to_string(violation) + ")");
+  sim.initial.V = initial_velocity(p, p.bc->restrict(Wh.interpolate(expression(s, "initial.v", "0"), 0.0)));
+  sim.initial.reaction = Eigen::VectorXd::Zero(p.n_free());
+
+  // Probes.
+  for (const std::string& name : s.keys("output.probes")) {
+    const std::string key = "output.probes." + name;
+    const std::vector<double> c = s.numbers(key);
+    if (static_cast<int>(c.size()) != mesh.dim) throw InputError(key + ": expected " + std::to_string(mesh.dim) + " coordinates");
+    Probe pr{name, {c[0], mesh.dim == 2 ? c[1] : 0.0}, {}, -1};
+    pr.where = locate(mesh, pr.at);
+    if (pr.where.cell < 0) throw InputError(key + ": the point lies outside the mesh");
+    pr.vertex = nearest_vertex(mesh, pr.at);
+    sim.probes.push_back(pr);
+  }
+  return sim;
+}
+
+}  // namespace cdyn::app

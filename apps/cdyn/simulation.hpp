@@ -1,0 +1,48 @@
+// simulation.hpp — from a scene to everything a run needs: the mesh, the
+// constrained problem, the initial state, the step solver and the scheme.
+//
+// This is the one place that reads scene keys into the kernel's plain structures
+// (DESIGN.md §4 lists the keys); the kernel itself knows no scene file.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cdyn/constrained_problem.hpp"
+#include "cdyn/mesh.hpp"
+#include "cdyn/point_location.hpp"
+#include "cdyn/qp.hpp"
+#include "cdyn/time_scheme.hpp"
+#include "scene.hpp"
+
+namespace cdyn::app {
+
+struct Probe {
+  std::string name;
+  Point at;
+  CellPoint where;   // cell and reference point of `at`
+  int vertex = -1;   // nearest vertex (where λ lives)
+};
+
+struct Simulation {
+  std::string scene_name, model, pair, scheme_name, solver_name;
+  double dt = 0, T = 0, tol = 0;
+  int n_steps = 0, output_every = 1;
+  std::unique_ptr<Mesh> mesh;
+  ConstrainedProblem problem;
+  State initial;
+  std::unique_ptr<StepSolver> solver;
+  std::unique_ptr<TimeScheme> scheme;
+  std::vector<Probe> probes;
+  std::vector<int> dirichlet_parts;        // for condition (12)
+  std::vector<int> constrained_vertices;
+};
+
+// Builds and checks everything (bad input throws InputError naming the key).
+Simulation make_simulation(const Scene& scene);
+
+// The mesh a scene describes (mesh.kind: interval, unit_square, gmsh).
+Mesh make_mesh(const Scene& scene);
+
+}  // namespace cdyn::app

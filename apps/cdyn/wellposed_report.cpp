@@ -1,0 +1,41 @@
+// wellposed_report.cpp — condition (12) for a run's pair and constraints.
+//
+// β = σ_min(G Z) is computed densely (wellposedness.hpp), so runs larger than its
+// limit report why it was not computed instead of a number.
+#include <cstdio>
+
+#include "cdyn/error.hpp"
+#include "cdyn/wellposedness.hpp"
+#include "commands.hpp"
+#include "simulation.hpp"
+
+namespace cdyn::app {
+
+nlohmann::ordered_json wellposedness_summary(const Simulation& sim) {
+  nlohmann::ordered_json j;
+  WellPosednessSetup setup;
+  setup.dirichlet_parts = sim.dirichlet_parts;
+  setup.constrained_vertices = sim.constrained_vertices;
+  try {
+    const WellPosedness w = wellposedness_row(*sim.mesh, sim.pair, setup, sim.problem.W->element());
+    j["beta"] = w.beta;
+    j["satisfied"] = w.satisfied;
+    j["dim_ker_B"] = w.dim_ker_B;
+    j["n_g"] = w.n_g;
+  } catch (const InputError& e) {
+    j["beta"] = nullptr;
+    j["satisfied"] = nullptr;
+    j["not_computed"] = e.what();
+  }
+  return j;
+}
+
+std::string wellposedness_line(const nlohmann::ordered_json& w) {
+  if (w["beta"].is_null()) return "not computed (" + w["not_computed"].get<std::string>() + ")";
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "beta = %.3e, %s", w["beta"].get<double>(),
+                w["satisfied"].get<bool>() ? "satisfied" : "VIOLATED (the semi-discrete problem is not well posed)");
+  return buf;
+}
+
+}  // namespace cdyn::app

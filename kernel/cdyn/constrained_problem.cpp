@@ -1,0 +1,33 @@
+// constrained_problem.cpp — load with lifting, full-field energy, violation.
+#include "cdyn/constrained_problem.hpp"
+
+#include <algorithm>
+
+namespace cdyn {
+
+const Eigen::VectorXd& ConstrainedProblem::full_load(double t) const {
+  if (cached_full_load_.size() == 0 || (!load_is_constant && t != cached_t_)) {
+    cached_full_load_ = L_full(t);
+    cached_load_ = bc->restrict(Eigen::VectorXd(cached_full_load_ - A_full * UD));
+    cached_t_ = t;
+  }
+  return cached_full_load_;
+}
+
+Eigen::VectorXd ConstrainedProblem::load(double t) const {
+  full_load(t);
+  return cached_load_;
+}
+
+double ConstrainedProblem::potential_energy(const Eigen::VectorXd& Uf, double t) const {
+  const Eigen::VectorXd U = full(Uf);
+  return 0.5 * U.dot(A_full * U) - full_load(t).dot(U);
+}
+
+double ConstrainedProblem::max_violation(const Eigen::VectorXd& Uf) const {
+  double v = 0.0;
+  for (int i : constrained) v = std::max({v, lower[i] - Uf[i], Uf[i] - upper[i]});
+  return v;
+}
+
+}  // namespace cdyn

@@ -1,0 +1,138 @@
+// mass_mixed.cpp — M = Bᵀ C⁻¹ B for the pairs W^h/H^h (seed eq. 11), and the blocks B, C.
+#include "cdyn/mass_mixed.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <cmath>
+
+#include "cdyn/error.hpp"
+
+namespace cdyn {
+
+namespace {
+
+// The entries of S whose row and column both survive: row_index / col_index map an old
+// row / column to its new index, or to −1 to drop it.
+SparseMatrix select(const SparseMatrix& S, const std::vector<int>& row_index, int n_rows,
+                    const std::vector<int>& col_index, int n_cols) {
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(S.nonZeros());
+  for (int j = 0; j < S.outerSize(); ++j) {
+    if (col_index[j] < 0) continue;
+    for (SparseMatrix::InnerIterator it(S, j); it; ++it)
+      if (row_index[it.row()] >= 0) t.emplace_back(row_index[it.row()], col_index[j], it.value());
+  }
+  SparseMatrix R(n_rows, n_cols);
+  R.setFromTriplets(t.begin(), t.end());
+  R.makeCompressed();
+  return R;
+}
+
+void check_size(const Eigen::VectorXd& x, Eigen::Index n, const char* what) {
+  if (x.size() != n)
+    throw InputError(std::string("mass model: ") + what + " has " + std::to_string(x.size()) + " entries, expected " +
+                     std::to_string(n));
+}
+
+class MixedMassModel final : public MassModel {
+ public:
+  MixedMassModel(std::string name, MixedBlocks blocks, bool diagonal_C)
+      : name_(std::move(name)), B_(std::move(blocks.B)), C_(std::move(blocks.C)), diagonal_(diagonal_C) {
+    if (diagonal_) {
+      // H^h = P0: C = diag(ρ|T|) (one entry per cell and component).
+      Cdiag_ = C_.diagonal();
+      if (C_.nonZeros() != C_.rows() || (Cdiag_.array() <= 0.0).any())
+        throw NumericalError("mass model " + name_ + ": C is not a positive diagonal matrix");
+      // M = Bᵀ C⁻¹ B, symmetrized exactly (the two triangles of a sparse product are
+      // summed in different orders).
+      const SparseMatrix CinvB = Cdiag_.cwiseInverse().asDiagonal() * B_;
+      SparseMatrix M = SparseMatrix(B_.transpose()) * CinvB;
+      M = 0.5 * (M + SparseMatrix(M.transpose()));
+      M.makeCompressed();
+      M_ = std::move(M);
+    } else {
+      cholC_.compute(C_);
+      if (cholC_.info() != Eigen::Success)
+        throw NumericalError("mass model " + name_ + ": the Cholesky factorization of C failed");
+    }
+  }
+
+  std::string name() const override { return name_; }
+  int n_velocity() const override { return static_cast<int>(B_.rows()); }
+  std::optional<SparseMatrix> matrix() const override { return M_; }
+  SaddleForm saddle(const SparseMatrix& A, double k) const override { return SaddleForm{A, B_, C_, k}; }
+
+  Eigen::VectorXd momentum(const Eigen::VectorXd& V) const override {
+    check_size(V, B_.rows(), "V");
+    return B_.transpose() * V;
+  }
+
+  Eigen::VectorXd velocity(const Eigen::VectorXd& Wdot) const override {
+    check_size(Wdot, B_.cols(), "the displacement rate");
+    const Eigen::VectorXd rhs = B_ * Wdot;
+    if (diagonal_) return rhs.cwiseQuotient(Cdiag_);
+    Eigen::VectorXd V = cholC_.solve(rhs);
+    return V;
+  }
+
+  double kinetic_energy(const Eigen::VectorXd& V) const override {
+    check_size(V, C_.rows(), "V");
+    return 0.5 * V.dot(C_ * V);
+  }
+
+ private:
+  std::string name_;
+  SparseMatrix B_, C_;
+  bool diagonal_;
+  Eigen::VectorXd Cdiag_;
+  std::optional<SparseMatrix> M_;
+  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholC_;
+};
+
+}  // namespace
+
+MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, double rho, bool velocity_dirichlet) {
+  if (!W.has_vertex_dofs()) throw InputError("pair: the displacement space W^h must be continuous (not P0)");
+  if (bc.n_full() != W.n_dofs()) throw InputError("pair: the Dirichlet partition does not belong to W^h");
+  const FESpace H(W.mesh(), He, W.components());
+  const SparseMatrix Bfull = assemble_mass(H, W);  // B_ij = ∫ψ_i φ_j  (seed, eq. 10)
+  const SparseMatrix Cfull = assemble_mass(H, H);  // C_ij = ∫ψ_i ψ_j
+
+  // The Dirichlet conditions of W^h carried to a continuous H^h: the velocity of a
+  // fixed vertex is the rate of constant data, zero.
+  MixedBlocks out;
+  out.n_velocity_full = H.n_dofs();
+  std::vector<char> fixed(H.n_dofs(), 0);
+  if (velocity_dirichlet && is_continuous(He) && !bc.fixed_dofs().empty()) {
+    if (He == W.element()) {
+      for (int d : bc.fixed_dofs()) fixed[d] = 1;  // same space, same numbering
+    } else if (He == Element::P1 || He == Element::P1Bubble) {
+      for (int v = 0; v < W.mesh().n_vertices(); ++v)  // scalar dof v of H^h is vertex v
+        for (int k = 0; k < W.components(); ++k)
+          if (bc.free_index(W.vertex_dof(v, k)) < 0) fixed[H.dof(v, k)] = 1;
+    } else {
+      throw InputError("pair " + to_string(W.element()) + "/" + to_string(He) +
+                       ": a P2 velocity space needs W^h = P2 (its boundary edge dofs come from W^h)");
+    }
+  }
+  std::vector<int> row_index(H.n_dofs(), -1);
+  int nh = 0;
+  for (int i = 0; i < H.n_dofs(); ++i) {
+    if (fixed[i])
+      out.velocity_fixed.push_back(i);
+    else
+      row_index[i] = nh++;
+  }
+  std::vector<int> col_index(W.n_dofs());
+  for (int j = 0; j < W.n_dofs(); ++j) col_index[j] = bc.free_index(j);
+  out.B = rho * select(Bfull, row_index, nh, col_index, bc.n_free());
+  out.C = rho * select(Cfull, row_index, nh, row_index, nh);
+  return out;
+}
+
+std::unique_ptr<MassModel> make_mixed_mass_model(const FESpace& W, const DirichletLift& bc, Element H, double rho) {
+  MixedBlocks blocks = mixed_blocks(W, bc, H, rho, true);
+  return std::make_unique<MixedMassModel>(to_string(W.element()) + "/" + to_string(H), std::move(blocks),
+                                          H == Element::P0);
+}
+
+}  // namespace cdyn

@@ -1,0 +1,389 @@
+// qp_pdas.cpp — primal-dual active set (Hintermüller–Ito–Kunisch 2002) with a projected
+// Newton fallback (Bertsekas 1982); see qp_pdas.hpp.
+#include "cdyn/qp_pdas.hpp"
+
+#include <Eigen/UmfPackSupport>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "cdyn/error.hpp"
+
+namespace cdyn {
+
+namespace {
+
+// Values of M with the rows and columns i < active.size() with active[i] replaced by the
+// identity's, written into `out`, which has M's pattern.
+void eliminate(const SparseMatrix& M, const std::vector<char>& active, SparseMatrix& out) {
+  const int n = static_cast<int>(active.size());
+  const int* outer = M.outerIndexPtr();
+  const int* inner = M.innerIndexPtr();
+  const double* m = M.valuePtr();
+  double* v = out.valuePtr();
+  for (int j = 0; j < M.outerSize(); ++j) {
+    const bool aj = j < n && active[j];
+    for (int p = outer[j]; p < outer[j + 1]; ++p) {
+      const int i = inner[p];
+      const bool ai = i < n && active[i];
+      v[p] = (ai || aj) ? (i == j ? 1.0 : 0.0) : m[p];
+    }
+  }
+}
+
+// True if every column j < n of M stores its diagonal entry.
+bool has_diagonal(const SparseMatrix& M, int n) {
+  for (int j = 0; j < n; ++j) {
+    bool found = false;
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) found = found || it.row() == j;
+    if (!found) return false;
+  }
+  return true;
+}
+
+// State of an unknown: free, or held at its lower or upper bound.
+constexpr signed char kFree = 0, kLower = -1, kUpper = 1;
+
+}  // namespace
+
+struct PDASSolver::Impl {
+  QPOptions opt;
+  Counters counters;
+  QuadraticForm form;
+
+  // explicit S
+  SparseMatrix S, S_tilde;            // the last S seen; S with the active set eliminated
+  SparseCholesky chol;
+  std::vector<char> factor_active;    // the active set chol currently factorizes
+  int updates_since_factorization = 0;
+
+  // saddle form
+  bool saddle = false;
+  SaddleForm blocks;                  // the last blocks seen
+  SparseMatrix K, K_tilde;            // [[A, c Bᵀ], [B, −C]] and its eliminated copy
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  bool lu_factorized = false;
+  std::vector<char> lu_active;
+
+  int n = 0;
+
+  // Makes the cached factorizations those of qp's matrix (analysis, PD check).
+  void prepare(const BoundQP& qp) {
+    form.set(qp);
+    n = qp.size();
+    saddle = qp.saddle.has_value();
+    if (!saddle) {
+      if (same_matrix(qp.S, S) && chol.factorized()) return;
+      S = qp.S;
+      S.makeCompressed();
+      if (!has_diagonal(S, n))
+        throw NumericalError("pdas: S has a zero diagonal entry: it is not positive definite");
+      if (!chol.analyzed_for(S)) {
+        chol.analyze(S);
+        ++counters.analyses;
+      }
+      S_tilde = S;
+      const int minor = chol.factorize(S);
+      ++counters.factorizations;
+      if (minor >= 0)
+        throw NumericalError("pdas: S is not positive definite (CHOLMOD: the factorization breaks down at unknown " +
+                             std::to_string(minor) + ")");
+      factor_active.assign(n, 0);
+      updates_since_factorization = 0;
+      return;
+    }
+    const SaddleForm& f = *qp.saddle;
+    if (lu_factorized && f.c == blocks.c && same_matrix(f.A, blocks.A) && same_matrix(f.B, blocks.B) &&
+        same_matrix(f.C, blocks.C))
+      return;
+    blocks = f;
+    const int m = static_cast<int>(f.C.rows());
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(f.A.nonZeros() + 2 * f.B.nonZeros() + f.C.nonZeros() + n);
+    for (int j = 0; j < n; ++j) t.emplace_back(j, j, 0.0);  // a stored diagonal for the identity rows
+    for (int j = 0; j < n; ++j)
+      for (SparseMatrix::InnerIterator it(f.A, j); it; ++it) t.emplace_back(it.row(), j, it.value());
+    for (int j = 0; j < n; ++j)
+      for (SparseMatrix::InnerIterator it(f.B, j); it; ++it) {
+        t.emplace_back(n + it.row(), j, it.value());         // B
+        t.emplace_back(j, n + it.row(), f.c * it.value());   // c Bᵀ
+      }
+    for (int j = 0; j < m; ++j)
+      for (SparseMatrix::InnerIterator it(f.C, j); it; ++it) t.emplace_back(n + it.row(), n + j, -it.value());
+    SparseMatrix Knew(n + m, n + m);
+    Knew.setFromTriplets(t.begin(), t.end());
+    Knew.makeCompressed();
+    const bool same_pattern = same_matrix(Knew, K, false) && lu_factorized;
+    K = std::move(Knew);
+    K_tilde = K;
+    if (!same_pattern) {
+      lu.analyzePattern(K);
+      ++counters.analyses;
+      if (lu.info() != Eigen::Success)
+        throw NumericalError("pdas: UMFPACK could not analyse the saddle matrix [[A, c B^T], [B, -C]]");
+    }
+    lu_factorized = false;
+  }
+
+  void refactorize(const std::vector<char>& active) {
+    eliminate(S, active, S_tilde);
+    const int minor = chol.factorize(S_tilde);
+    ++counters.factorizations;
+    if (minor >= 0)
+      throw NumericalError("pdas: the reduced matrix S_II is not positive definite (breakdown at unknown " +
+                           std::to_string(minor) + ")");
+    factor_active = active;
+    updates_since_factorization = 0;
+  }
+
+  // Makes the factorization that of S̃ for this active set.
+  void set_active(const std::vector<char>& active, bool fresh = false) {
+    if (saddle) {
+      if (lu_factorized && active == lu_active && !fresh) return;
+      eliminate(K, active, K_tilde);
+      lu.factorize(K_tilde);
+      ++counters.factorizations;
+      if (lu.info() != Eigen::Success)
+        throw NumericalError("pdas: UMFPACK found the saddle matrix singular (is C positive definite and "
+                             "A + c B^T C^-1 B positive definite?)");
+      lu_factorized = true;
+      lu_active = active;
+      return;
+    }
+    if (fresh || !chol.factorized()) return refactorize(active);
+    std::vector<int> to_delete, to_add;
+    for (int i = 0; i < n; ++i)
+      if (active[i] != factor_active[i]) (active[i] ? to_delete : to_add).push_back(i);
+    const int changes = static_cast<int>(to_delete.size() + to_add.size());
+    if (changes == 0) return;
+    if (changes > opt.pdas_update_limit) return refactorize(active);
+    for (int i : to_delete) {
+      chol.replace_by_identity(i);
+      factor_active[i] = 1;
+    }
+    std::vector<char> keep(n);
+    for (int i = 0; i < n; ++i) keep[i] = !factor_active[i];
+    for (int i : to_add) {
+      keep[i] = 1;
+      if (!chol.restore(i, S, keep)) return refactorize(active);  // round-off: start afresh
+      factor_active[i] = 0;
+    }
+    counters.row_updates += changes;
+    updates_since_factorization += changes;
+  }
+
+  // Solves S̃ y = top (explicit S), or K̃ [y; z] = [top; bottom] (saddle form).
+  Eigen::VectorXd solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd* bottom = nullptr) {
+    ++counters.solves;
+    if (!saddle) return chol.solve(top);
+    const int m = static_cast<int>(K.rows()) - n;
+    Eigen::VectorXd b(n + m);
+    b.head(n) = top;
+    if (bottom)
+      b.tail(m) = *bottom;
+    else
+      b.tail(m).setZero();
+    Eigen::VectorXd y = lu.solve(b);
+    return y.head(n);
+  }
+
+  // The minimizer with X_i = value_i on the active unknowns: S_II X_I = r_I − S_IA X_A.
+  Eigen::VectorXd solve_fixed(const BoundQP& qp, const std::vector<char>& active, const Eigen::VectorXd& value) {
+    set_active(active);
+    Eigen::VectorXd top = qp.r;
+    Eigen::VectorXd bottom;
+    if (!saddle) {
+      for (int j = 0; j < n; ++j)
+        if (active[j])
+          for (SparseMatrix::InnerIterator it(S, j); it; ++it) top[it.row()] -= it.value() * value[j];
+    } else {
+      const SaddleForm& f = blocks;
+      bottom = Eigen::VectorXd::Zero(f.C.rows());
+      for (int j = 0; j < n; ++j)
+        if (active[j]) {
+          for (SparseMatrix::InnerIterator it(f.A, j); it; ++it) top[it.row()] -= it.value() * value[j];
+          for (SparseMatrix::InnerIterator it(f.B, j); it; ++it) bottom[it.row()] -= it.value() * value[j];
+        }
+    }
+    for (int j = 0; j < n; ++j)
+      if (active[j]) top[j] = value[j];
+    Eigen::VectorXd X = solve_tilde(top, saddle ? &bottom : nullptr);
+    for (int j = 0; j < n; ++j)
+      if (active[j]) X[j] = value[j];
+    return X;
+  }
+};
+
+PDASSolver::PDASSolver(const QPOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->opt = options;
+  if (impl_->opt.max_iterations == 0) impl_->opt.max_iterations = 100;
+}
+PDASSolver::~PDASSolver() = default;
+const PDASSolver::Counters& PDASSolver::counters() const { return impl_->counters; }
+
+QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
+  const auto start = std::chrono::steady_clock::now();
+  check_problem(qp);
+  Impl& s = *impl_;
+  const QPOptions& opt = s.opt;
+  const int n = qp.size();
+  QPResult result;
+  auto finish = [&](const std::string& detail) {
+    finish_result(qp, s.form, opt.tol, result);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report_failure("pdas", opt, result, detail);
+    return result;
+  };
+  if (n == 0) {
+    s.form.set(qp);
+    result.X.resize(0);
+    return finish("");
+  }
+  s.prepare(qp);
+  const Eigen::VectorXd& l = qp.lower;
+  const Eigen::VectorXd& u = qp.upper;
+  const Eigen::VectorXd D = scaling_diagonal(qp);
+  for (int i = 0; i < n; ++i)
+    if (!(D[i] > 0)) throw NumericalError("pdas: S has a non-positive diagonal entry: it is not positive definite");
+
+  // The state (free / lower / upper) of every unknown, and the value it is held at.
+  std::vector<signed char> state(n, kFree);
+  auto bound_values = [&](const std::vector<signed char>& st, std::vector<char>& active, Eigen::VectorXd& value) {
+    active.assign(n, 0);
+    value = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i)
+      if (st[i] != kFree) {
+        active[i] = 1;
+        value[i] = st[i] == kLower ? l[i] : u[i];
+      }
+  };
+  // The PDAS rule: the next state from (X, λ).
+  auto rule = [&](const Eigen::VectorXd& X, const Eigen::VectorXd& lam) {
+    std::vector<signed char> st(n, kFree);
+    for (int i = 0; i < n; ++i) {
+      if (l[i] == u[i])
+        st[i] = kLower;
+      else if (std::isfinite(l[i]) && lam[i] + D[i] * (l[i] - X[i]) > 0)
+        st[i] = kLower;
+      else if (std::isfinite(u[i]) && lam[i] + D[i] * (u[i] - X[i]) < 0)
+        st[i] = kUpper;
+    }
+    return st;
+  };
+
+  for (int i = 0; i < n; ++i)
+    if (l[i] == u[i]) state[i] = kLower;  // fixed unknowns
+  if (warm_start && warm_start->X.size() == n) {
+    // the previous active set, each unknown held at its nearer bound
+    for (int i : warm_start->active) {
+      if (i < 0 || i >= n || state[i] != kFree) continue;
+      const double xi = warm_start->X[i];
+      const bool has_l = std::isfinite(l[i]), has_u = std::isfinite(u[i]);
+      if (has_l && (!has_u || std::abs(xi - l[i]) <= std::abs(xi - u[i])))
+        state[i] = kLower;
+      else if (has_u)
+        state[i] = kUpper;
+    }
+  }
+
+  std::vector<char> active;
+  Eigen::VectorXd value, X, lam;
+  std::set<std::vector<signed char>> seen;
+  bool cycled = false;
+  bool refined_fresh = false;
+  int it = 0;
+  while (it < opt.max_iterations) {
+    ++it;
+    bound_values(state, active, value);
+    X = s.solve_fixed(qp, active, value);
+    lam = s.form.apply(X) - qp.r;
+    const std::vector<signed char> next = rule(X, lam);
+    result.iterations = it;
+    if (next == state) {
+      // X is exact up to the linear solve: refine if the residual says it is not enough
+      result.X = X;
+      finish_result(qp, s.form, opt.tol, result);
+      for (int k = 0; k < 2 && !result.converged; ++k) {
+        Eigen::VectorXd top = -result.reaction;
+        for (int i = 0; i < n; ++i)
+          if (active[i]) top[i] = 0.0;
+        Eigen::VectorXd zero;
+        if (s.saddle) zero = Eigen::VectorXd::Zero(s.blocks.C.rows());
+        result.X += s.solve_tilde(top, s.saddle ? &zero : nullptr);
+        finish_result(qp, s.form, opt.tol, result);
+      }
+      if (!result.converged && !refined_fresh && (s.saddle || s.updates_since_factorization > 0)) {
+        refined_fresh = true;  // row updates may have lost accuracy: refactorize and solve again
+        s.set_active(active, true);
+        continue;
+      }
+      return finish("active set repeated but the residual stays above tol: S is ill-conditioned");
+    }
+    if (kkt_residual(qp, X, lam) <= opt.tol) {
+      result.X = X;  // degenerate unknowns (λ_i ≈ 0 at the bound) may still switch: X is good
+      return finish("");
+    }
+    if (seen.count(next)) {
+      cycled = true;
+      break;
+    }
+    seen.insert(state);
+    state = next;
+  }
+  if (!cycled) {
+    result.X = X;
+    return finish("no convergence of the active set");
+  }
+
+  // ----- projected Newton (Bertsekas 1982) from the projection of the current X -----
+  for (int i = 0; i < n; ++i) X[i] = std::clamp(X[i], l[i], u[i]);
+  const double eps_bar = std::max(X.lpNorm<Eigen::Infinity>(), qp.r.cwiseQuotient(D).lpNorm<Eigen::Infinity>());
+  const double sigma = 1e-4;
+  while (it < opt.max_iterations) {
+    ++it;
+    ++s.counters.damped_iterations;
+    result.iterations = it;
+    lam = s.form.apply(X) - qp.r;
+    if (kkt_residual(qp, X, lam) <= opt.tol) {
+      result.X = X;
+      return finish("");
+    }
+    const double eps = std::min(eps_bar, natural_residual(qp, X, lam, D).lpNorm<Eigen::Infinity>());
+    active.assign(n, 0);
+    for (int i = 0; i < n; ++i)
+      active[i] = l[i] == u[i] || (X[i] <= l[i] + eps && lam[i] > 0) || (X[i] >= u[i] - eps && lam[i] < 0);
+    // direction: Newton on the free unknowns, scaled gradient on the ε-active ones
+    s.set_active(active);
+    Eigen::VectorXd top(n);
+    for (int i = 0; i < n; ++i) top[i] = active[i] ? -lam[i] / D[i] : -lam[i];
+    Eigen::VectorXd zero;
+    if (s.saddle) zero = Eigen::VectorXd::Zero(s.blocks.C.rows());
+    const Eigen::VectorXd p = s.solve_tilde(top, s.saddle ? &zero : nullptr);
+    // Armijo along the projection arc X(t) = P(X + t p)
+    double t = 1.0;
+    bool accepted = false;
+    Eigen::VectorXd Xt(n);
+    while (t > 1e-20) {
+      for (int i = 0; i < n; ++i) Xt[i] = std::clamp(X[i] + t * p[i], l[i], u[i]);
+      const Eigen::VectorXd step = Xt - X;
+      const double decrease = -(lam.dot(step) + 0.5 * step.dot(s.form.apply(step)));  // f(X) − f(X(t))
+      double predicted = 0.0;
+      for (int i = 0; i < n; ++i) predicted += active[i] ? lam[i] * (X[i] - Xt[i]) : -t * lam[i] * p[i];
+      if (decrease >= sigma * predicted) {
+        accepted = true;
+        break;
+      }
+      t *= 0.5;
+    }
+    if (!accepted) {
+      result.X = X;
+      return finish("projected Newton line search stalled");
+    }
+    X = Xt;
+  }
+  result.X = X;
+  return finish("projected Newton after a cycling active set");
+}
+
+}  // namespace cdyn

@@ -1,0 +1,25 @@
+// time_scheme.cpp — choosing a scheme by name; the initial velocity.
+#include "cdyn/time_scheme.hpp"
+
+#include "cdyn/error.hpp"
+#include "cdyn/implicit_step.hpp"
+
+namespace cdyn {
+
+std::vector<std::string> time_scheme_names() { return {"backward_euler", "midpoint", "midpoint_end"}; }
+
+std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
+                                             StepSolver& solver, double dt) {
+  if (name == "backward_euler") return make_backward_euler(problem, solver, dt);
+  if (name == "midpoint") return make_midpoint(problem, solver, dt);
+  if (name == "midpoint_end") return make_midpoint_end(problem, solver, dt);
+  std::string known;
+  for (const auto& n : time_scheme_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("time.scheme: unknown or not yet available scheme '" + name + "' (available: " + known + ")");
+}
+
+Eigen::VectorXd initial_velocity(const ConstrainedProblem& problem, const Eigen::VectorXd& Udot0) {
+  return problem.mass->velocity(Udot0);
+}
+
+}  // namespace cdyn

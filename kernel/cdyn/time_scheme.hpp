@@ -1,0 +1,52 @@
+// time_scheme.hpp — time integration of the semi-discrete constrained problem.
+//
+// Every implicit scheme of DESIGN.md §1 advances (U, V) by one QP
+//     min ½ XᵀSX − rᵀX  over  lower ≤ X ≤ upper,
+// followed by an explicit update.  S is fixed for a run (dt is), so the QP object and
+// the step solver's factorizations are reused from step to step; the previous step's
+// result warm-starts the next.  Derivations: docs/schemes.md.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "cdyn/constrained_problem.hpp"
+#include "cdyn/qp.hpp"
+
+namespace cdyn {
+
+// The discrete state: time, displacement (free dofs of W^h), velocity (H^h).
+struct State {
+  double t = 0.0;
+  Eigen::VectorXd U, V;
+  Eigen::VectorXd reaction;  // Gᵀλ of the last step on the free dofs (λ the seed's multiplier)
+};
+
+// What one step cost and found.
+struct StepStats {
+  int qp_iterations = 0;
+  double qp_seconds = 0.0;
+  int active = 0;             // constraints active at the step's QP solution
+  double kkt_residual = 0.0;
+};
+
+class TimeScheme {
+ public:
+  virtual ~TimeScheme() = default;
+  virtual std::string name() const = 0;
+  // Advances s from t to t + dt.
+  virtual StepStats step(State& s) = 0;
+};
+
+// name: backward_euler | midpoint | midpoint_end.  The problem and the solver must
+// outlive the scheme.  Throws InputError for an unknown name or dt <= 0.
+std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
+                                             StepSolver& solver, double dt);
+std::vector<std::string> time_scheme_names();
+
+// The initial velocity V⁰ in H^h from a displacement rate U̇⁰ on the free dofs:
+// C V⁰ = B U̇⁰ (seed eq. 11's initial condition).
+Eigen::VectorXd initial_velocity(const ConstrainedProblem& problem, const Eigen::VectorXd& Udot0);
+
+}  // namespace cdyn

@@ -1,0 +1,39 @@
+// gmsh_mesh.hpp — the gmsh front end: a .geo or .msh file becomes a cdyn::Mesh.
+//
+// A .geo file is meshed through the gmsh C++ API; a .msh file (format 2.2 or 4.1,
+// what gmsh and FreeFEM exchange) is read through the same API.  Physical groups
+// carry the names the rest of cdyn uses:
+//   - groups of the top dimension (physical surfaces in 2D, curves in 1D) select the
+//     cells and become regions (Mesh::cell_region, Mesh::region_names);
+//   - groups of one dimension lower (curves in 2D, points in 1D) become the named
+//     boundary parts (Mesh::part_names), e.g. "dirichlet", "contact".
+// Only first-order simplices are accepted: 3-node triangles (2D, in the plane z = 0)
+// and 2-node lines (1D, along the x axis).  docs/meshing.md has the details.
+//
+// Every failure (missing file, syntax error, meshing error, unsupported element,
+// empty mesh) is thrown as cdyn::InputError with a one-line message that starts with
+// the file name.  gmsh keeps global state, so these functions must not be called
+// from two threads at once.
+#pragma once
+
+#include <string>
+
+#include "cdyn/mesh.hpp"
+
+namespace cdyn {
+
+// Reads `path` (.geo: meshed in its own dimension; .msh: read as is) into a Mesh:
+// vertices numbered 0..nv-1 in increasing gmsh node tag order (only nodes used by a
+// cell), triangles counter-clockwise, boundary facets tagged with their physical
+// group (untagged boundary facets get part -1), checked with Mesh::check.
+Mesh read_mesh(const std::string& path);
+
+// Meshes a .geo (or opens a .msh) and writes the mesh to `out_path` (must end in
+// .msh) in msh format `version`, 2.2 (what FreeFEM's gmshload reads) or 4.1.  The
+// mesh is validated as read_mesh does before it is written, so that what is written
+// can be read back.  gmsh writes only the elements of physical groups, so a model that
+// has physical groups but none of its own dimension gets one, named "domain", holding
+// all its cells (read back, it is a region).
+void write_msh(const std::string& geo_or_msh, const std::string& out_path, double version);
+
+}  // namespace cdyn

@@ -1,0 +1,14 @@
+#!/bin/sh
+# refresh-references.sh — regenerate every reference CSV in data/reference/ from the
+# independent programs in reference_scripts/ (DESIGN.md §6: each stored reference number
+# comes with the exact command that produced it).  Run from the repository root:
+#     sh scripts/refresh-references.sh
+# One line per CSV.  FreeFEM 4.11 (Debian freefem++): its plugins live in
+# /usr/lib/freefem++, which the packaged search path misses, hence FF_LOADPATH.
+set -e
+cd "$(dirname "$0")/.."
+FF="env FF_LOADPATH=/usr/lib/freefem++ FreeFem++ -nw -v 0"
+
+# static membrane obstacle (FreeFEM + ff-Ipopt), read by tests/unit/test_qp_obstacle.cpp
+$FF reference_scripts/static_obstacle.edp -n 10 -out data/reference/static_obstacle_n10.csv
+$FF reference_scripts/static_obstacle.edp -n 20 -out data/reference/static_obstacle_n20.csv

@@ -1,0 +1,24 @@
+# expect_error.cmake — runs `${CDYN} ${ARGS}` and checks the bad-input contract
+# (DESIGN.md §4): exit status ${STATUS} (default 2) and exactly one line on stderr,
+# matching ${MATCH}.
+#   cmake -DCDYN=... -DARGS="a;b" -DMATCH=regex [-DSTATUS=2] [-DWORKDIR=dir] -P expect_error.cmake
+if(NOT DEFINED STATUS)
+  set(STATUS 2)
+endif()
+if(NOT DEFINED WORKDIR)
+  set(WORKDIR ${CMAKE_CURRENT_BINARY_DIR})
+endif()
+execute_process(COMMAND ${CDYN} ${ARGS} WORKING_DIRECTORY ${WORKDIR}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL STATUS)
+  message(FATAL_ERROR "expected exit status ${STATUS}, got ${rc}\nstdout: ${out}\nstderr: ${err}")
+endif()
+string(REGEX MATCHALL "\n" newlines "${err}")
+list(LENGTH newlines n)
+if(NOT n EQUAL 1)
+  message(FATAL_ERROR "expected one line on stderr, got ${n}:\n${err}")
+endif()
+if(NOT err MATCHES "${MATCH}")
+  message(FATAL_ERROR "stderr does not match '${MATCH}':\n${err}")
+endif()
+message(STATUS "ok: ${err}")

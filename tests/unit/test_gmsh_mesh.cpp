@@ -1,0 +1,388 @@
+// test_gmsh_mesh.cpp — the gmsh front end: .geo meshed through the API, .msh 2.2/4.1
+// written and read back, physical groups as boundary parts, bad input refused.
+//
+// Each check is a number that follows from the geometry (areas, lengths, where the
+// boundary lies) or from an identity (Euler's formula, the area of an inscribed
+// polygon), not a value copied from a previous run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "cdyn/error.hpp"
+#include "cdyn/gmsh_mesh.hpp"
+#include "cdyn/mesh.hpp"
+
+namespace fs = std::filesystem;
+using cdyn::Mesh;
+
+namespace {
+
+std::string data_geo(const std::string& name) {
+  return std::string(CDYN_SOURCE_DIR) + "/data/geo/" + name;
+}
+
+// A fresh scratch directory per test: CTest may run the tests in parallel.
+fs::path scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir =
+      fs::path(CDYN_BINARY_DIR) / "test_gmsh_mesh_tmp" / (std::string(info->test_suite_name()) + "." + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+double facet_length(const Mesh& m, const cdyn::BoundaryFacet& f) {
+  if (m.dim == 1) return 0.0;
+  const auto& a = m.vertices[f.vertices[0]];
+  const auto& b = m.vertices[f.vertices[1]];
+  return std::hypot(b.x - a.x, b.y - a.y);
+}
+
+// Total length of the facets of boundary part `part` (-1: untagged facets).
+double part_length(const Mesh& m, int part) {
+  double s = 0.0;
+  for (const auto& f : m.boundary)
+    if (f.part == part) s += facet_length(m, f);
+  return s;
+}
+
+double boundary_length(const Mesh& m) {
+  double s = 0.0;
+  for (const auto& f : m.boundary) s += facet_length(m, f);
+  return s;
+}
+
+// Physical groups as cdyn sees them: name -> number of facets (boundary parts) or of
+// cells (regions, prefixed "region:").
+std::map<std::string, int> group_counts(const Mesh& m) {
+  std::map<std::string, int> counts;
+  for (const auto& name : m.part_names) counts[name] = 0;
+  for (const auto& f : m.boundary)
+    if (f.part >= 0) ++counts[m.part_names[f.part]];
+  for (const auto& name : m.region_names) counts["region:" + name] = 0;
+  for (int r : m.cell_region) ++counts["region:" + m.region_names[r]];
+  return counts;
+}
+
+// The cells as sets of vertex positions (rounded to 1e-12), sorted: two meshes of the
+// same triangles compare equal whatever their vertex and cell numbering.
+using Position = std::array<long long, 2>;
+std::vector<std::vector<Position>> cells_by_position(const Mesh& m) {
+  std::vector<std::vector<Position>> cells;
+  for (const auto& t : m.cells) {
+    std::vector<Position> c;
+    for (int i = 0; i <= m.dim; ++i)
+      c.push_back({std::llround(m.vertices[t[i]].x * 1e12), std::llround(m.vertices[t[i]].y * 1e12)});
+    std::sort(c.begin(), c.end());
+    cells.push_back(c);
+  }
+  std::sort(cells.begin(), cells.end());
+  return cells;
+}
+
+// Expects read_mesh(path) to throw InputError with a one-line message naming `path`
+// and containing `expected` (if non-empty).
+void expect_input_error(const std::string& path, const std::string& expected = "") {
+  try {
+    (void)cdyn::read_mesh(path);
+    ADD_FAILURE() << path << ": no InputError thrown";
+  } catch (const cdyn::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    if (!expected.empty()) {
+      EXPECT_NE(what.find(expected), std::string::npos) << what;
+    }
+    std::cout << "  [message] " << what << "\n";
+  }
+}
+
+}  // namespace
+
+// The L-shape [0,1]^2 \ [0.5,1]^2: area 3/4, perimeter 4 (outer 3, re-entrant 1).
+TEST(GmshMesh, LShapeFromGeo) {
+  const Mesh m = cdyn::read_mesh(data_geo("lshape.geo"));
+  ASSERT_EQ(m.dim, 2);
+  EXPECT_NEAR(m.measure(), 0.75, 1e-12);
+  for (int c = 0; c < m.n_cells(); ++c) EXPECT_GT(m.cell_measure(c), 0.0) << "cell " << c << " not CCW";
+
+  ASSERT_EQ(m.part_names, (std::vector<std::string>{"outer", "reentrant"}));
+  ASSERT_EQ(m.region_names, (std::vector<std::string>{"membrane"}));
+  ASSERT_EQ(static_cast<int>(m.cell_region.size()), m.n_cells());
+  EXPECT_NEAR(boundary_length(m), 4.0, 1e-12);
+  EXPECT_NEAR(part_length(m, m.part_index("outer")), 3.0, 1e-12);
+  EXPECT_NEAR(part_length(m, m.part_index("reentrant")), 1.0, 1e-12);
+  EXPECT_EQ(part_length(m, -1), 0.0) << "the two groups cover the whole boundary";
+
+  // The re-entrant sides lie on x = 0.5 or y = 0.5 with x, y >= 0.5; the outer ones on
+  // x = 0, y = 0, x = 1 or y = 1.
+  for (const auto& f : m.boundary)
+    for (int i = 0; i < 2; ++i) {
+      const auto& p = m.vertices[f.vertices[i]];
+      if (f.part == m.part_index("reentrant")) {
+        EXPECT_TRUE(p.x >= 0.5 - 1e-14 && p.y >= 0.5 - 1e-14);
+        EXPECT_TRUE(std::abs(p.x - 0.5) < 1e-14 || std::abs(p.y - 0.5) < 1e-14);
+      } else {
+        EXPECT_TRUE(p.x < 1e-14 || p.y < 1e-14 || p.x > 1 - 1e-14 || p.y > 1 - 1e-14);
+      }
+    }
+
+  // Euler's formula for a triangulated disk: V - E + F = 1, each interior edge shared
+  // by two triangles (E = (3F + E_boundary)/2), and a closed boundary polygon has as
+  // many vertices as edges.
+  const int nb = static_cast<int>(m.boundary.size());
+  ASSERT_EQ((3 * m.n_cells() + nb) % 2, 0);
+  EXPECT_EQ(m.n_vertices() - (3 * m.n_cells() + nb) / 2 + m.n_cells(), 1);
+  EXPECT_EQ(static_cast<int>(m.part_vertices({0, 1}).size()), nb);
+  EXPECT_LE(m.h_max(), 0.2);  // target size 0.1; gmsh stays within a factor 2 of it
+  std::cout << "  lshape: " << m.n_vertices() << " vertices, " << m.n_cells() << " triangles, "
+            << nb << " boundary edges, area - 0.75 = " << m.measure() - 0.75
+            << ", perimeter - 4 = " << boundary_length(m) - 4.0 << ", h_max = " << m.h_max() << "\n";
+}
+
+// The same mesh written as .msh 2.2 and 4.1 and read back is the same mesh.
+TEST(GmshMesh, LShapeRoundTripThroughMsh22And41) {
+  const fs::path dir = scratch_dir();
+  const Mesh direct = cdyn::read_mesh(data_geo("lshape.geo"));
+  for (double version : {2.2, 4.1}) {
+    const std::string file = (dir / (version == 2.2 ? "lshape22.msh" : "lshape41.msh")).string();
+    cdyn::write_msh(data_geo("lshape.geo"), file, version);
+    std::ifstream in(file);
+    std::string format, number;
+    in >> format >> number;
+    EXPECT_EQ(format, "$MeshFormat");
+    EXPECT_EQ(number, version == 2.2 ? "2.2" : "4.1");
+
+    const Mesh back = cdyn::read_mesh(file);
+    SCOPED_TRACE(file);
+    EXPECT_EQ(back.dim, direct.dim);
+    EXPECT_EQ(back.n_vertices(), direct.n_vertices());
+    EXPECT_EQ(back.n_cells(), direct.n_cells());
+    EXPECT_EQ(back.boundary.size(), direct.boundary.size());
+    EXPECT_EQ(group_counts(back), group_counts(direct));
+    EXPECT_NEAR(back.measure(), 0.75, 1e-12);
+    EXPECT_NEAR(boundary_length(back), 4.0, 1e-12);
+    // Same node order, same coordinates (written with 16 significant digits).
+    ASSERT_EQ(back.vertices.size(), direct.vertices.size());
+    double dx = 0.0;
+    for (int v = 0; v < back.n_vertices(); ++v)
+      dx = std::max({dx, std::abs(back.vertices[v].x - direct.vertices[v].x),
+                     std::abs(back.vertices[v].y - direct.vertices[v].y)});
+    EXPECT_LE(dx, 1e-15);
+    EXPECT_EQ(back.cells, direct.cells);
+    EXPECT_EQ(cells_by_position(back), cells_by_position(direct));
+  }
+}
+
+// The disk of radius 20 centred at (0, 20.5).  Its mesh is a polygon inscribed in the
+// circle, so  A_polygon <= A <= pi R^2  with  pi R^2 - A = sum_k R^2 (t_k - sin t_k)/2
+// <= pi R^2 t_max^2 / 6  (t_k the central angle of boundary edge k, sum t_k = 2 pi).
+TEST(GmshMesh, DiskAreaAndContactHalf) {
+  const double R = 20.0, yc = 20.5, pi = std::numbers::pi;
+  const Mesh m = cdyn::read_mesh(data_geo("disk.geo"));
+  ASSERT_EQ(m.dim, 2);
+  ASSERT_EQ(m.part_names, (std::vector<std::string>{"contact", "free"}));
+  ASSERT_EQ(m.region_names, (std::vector<std::string>{"disk"}));
+  EXPECT_EQ(part_length(m, -1), 0.0);
+
+  double t_max = 0.0, inscribed = 0.0, r_err = 0.0;
+  for (const auto& f : m.boundary) {
+    const double t = 2.0 * std::asin(facet_length(m, f) / (2.0 * R));
+    t_max = std::max(t_max, t);
+    inscribed += 0.5 * R * R * std::sin(t);
+    for (int i = 0; i < 2; ++i) {
+      const auto& p = m.vertices[f.vertices[i]];
+      r_err = std::max(r_err, std::abs(std::hypot(p.x, p.y - yc) - R));
+    }
+  }
+  EXPECT_LE(r_err, 1e-9 * R) << "boundary nodes lie on the circle";
+  const double A = m.measure();
+  EXPECT_LE(A, pi * R * R);
+  EXPECT_GE(A, pi * R * R * (1.0 - t_max * t_max / 6.0));
+  EXPECT_NEAR(A, inscribed, 1e-9 * A) << "the mesh area is that of its boundary polygon";
+
+  // Contact on the lower half, free on the upper half, each half the perimeter.
+  const int contact = m.part_index("contact"), free = m.part_index("free");
+  double y_min = 1e300;
+  for (const auto& f : m.boundary)
+    for (int i = 0; i < 2; ++i) {
+      const double y = m.vertices[f.vertices[i]].y;
+      y_min = std::min(y_min, y);
+      if (f.part == contact) {
+        EXPECT_LE(y, yc + 1e-9);
+      } else if (f.part == free) {
+        EXPECT_GE(y, yc - 1e-9);
+      }
+    }
+  EXPECT_NEAR(y_min, yc - R, 1e-12) << "lowest point 0.5 mm above the plane y = 0";
+  for (int part : {contact, free}) {
+    const double L = part_length(m, part);  // chord 2R sin(t/2) >= R t (1 - t^2/24)
+    EXPECT_LE(L, pi * R);
+    EXPECT_GE(L, pi * R * (1.0 - t_max * t_max / 24.0));
+  }
+  std::cout << "  disk: " << m.n_vertices() << " vertices, " << m.n_cells() << " triangles, "
+            << "(pi R^2 - A)/(pi R^2) = " << (pi * R * R - A) / (pi * R * R)
+            << " <= t_max^2/6 = " << t_max * t_max / 6.0 << "\n";
+}
+
+// A 1D model: the bar [0, 2] with physical points "left" and "right".
+// lshape.geo is read first, in the same process: both files declare the ONELAB parameter
+// "Parameters/mesh size h" (0.1 there, 0.25 here), which must not carry over.
+TEST(GmshMesh, BarIn1D) {
+  (void)cdyn::read_mesh(data_geo("lshape.geo"));
+  const Mesh m = cdyn::read_mesh(data_geo("bar.geo"));
+  ASSERT_EQ(m.dim, 1);
+  EXPECT_NEAR(m.measure(), 2.0, 1e-12);
+  EXPECT_EQ(m.n_vertices(), m.n_cells() + 1);
+  EXPECT_EQ(m.n_cells(), 8);  // h = 0.25 on a length of 2
+  for (int c = 0; c < m.n_cells(); ++c) EXPECT_GT(m.cell_measure(c), 0.0) << "left to right";
+  ASSERT_EQ(m.part_names, (std::vector<std::string>{"left", "right"}));
+  ASSERT_EQ(m.boundary.size(), 2u);
+  EXPECT_EQ(m.vertices[m.part_vertices({m.part_index("left")}).at(0)].x, 0.0);
+  EXPECT_EQ(m.vertices[m.part_vertices({m.part_index("right")}).at(0)].x, 2.0);
+  EXPECT_EQ(m.region_names, (std::vector<std::string>{"bar"}));
+}
+
+// A hand-written .msh 2.2, independent of gmsh's mesher: the unit square as two
+// clockwise triangles (the reader must flip them), an unnamed physical curve (named
+// "group<tag>"), no physical surface (all triangles are taken, no regions), and an
+// unused node 5 (left out of the numbering).
+TEST(GmshMesh, HandWrittenMsh22) {
+  const std::string file = write_text(scratch_dir() / "square.msh", R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+1
+1 7 "bottom"
+$EndPhysicalNames
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 9 9 0
+$EndNodes
+$Elements
+4
+1 1 2 7 1 1 2
+2 1 2 8 2 2 3
+3 2 2 0 1 1 3 2
+4 2 2 0 1 1 4 3
+$EndElements
+)");
+  const Mesh m = cdyn::read_mesh(file);
+  ASSERT_EQ(m.dim, 2);
+  EXPECT_EQ(m.n_vertices(), 4);
+  EXPECT_EQ(m.n_cells(), 2);
+  EXPECT_NEAR(m.measure(), 1.0, 1e-15);
+  for (int c = 0; c < m.n_cells(); ++c) EXPECT_NEAR(m.cell_measure(c), 0.5, 1e-15);
+  EXPECT_EQ(m.part_names, (std::vector<std::string>{"bottom", "group8"}));
+  EXPECT_TRUE(m.region_names.empty());
+  EXPECT_TRUE(m.cell_region.empty());
+  EXPECT_EQ(m.boundary.size(), 4u);  // 2 tagged + 2 untagged
+  EXPECT_NEAR(part_length(m, -1), 2.0, 1e-15);
+  EXPECT_NEAR(boundary_length(m), 4.0, 1e-15);
+}
+
+// gmsh writes only the elements of physical groups when there are some: a .geo with
+// physical curves but no physical surface must still keep its triangles (and its
+// curves' names) in the .msh; write_msh puts them in a physical surface "domain".
+TEST(GmshMesh, WriteKeepsCellsWithoutPhysicalSurface) {
+  const fs::path dir = scratch_dir();
+  const std::string geo = write_text(dir / "square.geo", R"(
+Point(1) = {0, 0, 0, 0.25}; Point(2) = {1, 0, 0, 0.25};
+Point(3) = {1, 1, 0, 0.25}; Point(4) = {0, 1, 0, 0.25};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Curve("clamped") = {4};
+)");
+  const Mesh direct = cdyn::read_mesh(geo);
+  for (double version : {2.2, 4.1}) {
+    const std::string file = (dir / (version == 2.2 ? "s22.msh" : "s41.msh")).string();
+    cdyn::write_msh(geo, file, version);
+    const Mesh back = cdyn::read_mesh(file);
+    SCOPED_TRACE(file);
+    EXPECT_EQ(back.n_cells(), direct.n_cells());
+    // gmsh renumbers the nodes when it saves a model whose entities are not all in
+    // physical groups: the same triangles, numbered differently.
+    EXPECT_EQ(cells_by_position(back), cells_by_position(direct));
+    EXPECT_EQ(back.region_names, std::vector<std::string>{"domain"});
+    EXPECT_NEAR(back.measure(), 1.0, 1e-12);
+    EXPECT_NEAR(part_length(back, back.part_index("clamped")), 1.0, 1e-12);
+    EXPECT_NEAR(boundary_length(back), 4.0, 1e-12);
+  }
+}
+
+TEST(GmshMeshBadInput, MissingFile) {
+  expect_input_error((scratch_dir() / "no_such_mesh.msh").string(), "no such file");
+  expect_input_error((scratch_dir() / "no_such_geometry.geo").string(), "no such file");
+}
+
+TEST(GmshMeshBadInput, GarbageMsh) {
+  const fs::path dir = scratch_dir();
+  expect_input_error(write_text(dir / "garbage.msh", "this is not a mesh\n%%% 1 2 3\n"));
+  expect_input_error(write_text(dir / "truncated.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n"));
+  expect_input_error(write_text(dir / "empty.msh", ""), "no mesh elements");
+}
+
+TEST(GmshMeshBadInput, GeoSyntaxError) {
+  const fs::path dir = scratch_dir();
+  expect_input_error(write_text(dir / "syntax.geo", "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0 0.1};\n"),
+                     "syntax error");
+  expect_input_error(write_text(dir / "empty.geo", "// nothing\n"), "no curve or surface");
+}
+
+TEST(GmshMeshBadInput, UnsupportedElementsAndFiles) {
+  const fs::path dir = scratch_dir();
+  const std::string square = R"(
+Point(1) = {0, 0, 0, 0.5}; Point(2) = {1, 0, 0, 0.5};
+Point(3) = {1, 1, 0, 0.5}; Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+)";
+  expect_input_error(write_text(dir / "p2.geo", square + "Mesh.ElementOrder = 2;\n"), "order 2");
+  expect_input_error(write_text(dir / "quads.geo", square + "Recombine Surface{1};\n"), "not supported");
+  expect_input_error(write_text(dir / "tilted.geo", square + "Rotate {{1, 0, 0}, {0, 0, 0}, 0.5} { Surface{1}; }\n"),
+                     "plane z = 0");
+  expect_input_error(write_text(dir / "mesh.stl", "solid x\nendsolid x\n"), "unknown mesh file type");
+  expect_input_error(dir.string() + "/", "");  // a directory: no extension
+}
+
+// gmsh's parser keeps global state; after a syntax error a good file must still read.
+TEST(GmshMeshBadInput, GoodFileReadsAfterBadOnes) {
+  const fs::path dir = scratch_dir();
+  expect_input_error(write_text(dir / "bad.geo", "Line(1) = {1, 2;\n"));
+  expect_input_error(write_text(dir / "bad.msh", "$MeshFormat\ngarbage\n"));
+  const Mesh m = cdyn::read_mesh(data_geo("lshape.geo"));
+  EXPECT_NEAR(m.measure(), 0.75, 1e-12);
+}
+
+TEST(GmshMeshBadInput, WriteErrors) {
+  const fs::path dir = scratch_dir();
+  EXPECT_THROW(cdyn::write_msh(data_geo("lshape.geo"), (dir / "x.msh").string(), 3.0), cdyn::InputError);
+  EXPECT_THROW(cdyn::write_msh(data_geo("lshape.geo"), (dir / "x.vtk").string(), 2.2), cdyn::InputError);
+  try {
+    cdyn::write_msh(data_geo("lshape.geo"), (dir / "no_dir" / "x.msh").string(), 2.2);
+    ADD_FAILURE() << "writing into a missing directory did not throw";
+  } catch (const cdyn::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("x.msh"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    std::cout << "  [message] " << what << "\n";
+  }
+}

@@ -1,0 +1,507 @@
+// test_qp_solvers.cpp — the four step solvers (qp.hpp) on random SPD bound-constrained QPs.
+//
+// The reference answers come from mathematics, not from one of the solvers:
+//  - small problems (n ≤ 8): exhaustive enumeration of the 3ⁿ active sets, each a dense
+//    linear solve, keeping the one that satisfies the KKT conditions (the QP is strictly
+//    convex, so exactly one does);
+//  - larger problems: the a-posteriori error bound of the natural residual for a
+//    strongly convex QP (Facchinei & Pang 2003, Prop. 6.3.1): in the scaled unknowns
+//    y = D^½ X,  ‖y − y*‖₂ ≤ (1 + L)/μ ‖F_y‖₂  with μ, L the extreme eigenvalues of
+//    D^-½ S D^-½ (computed densely here) and F_y = D^½ F.  Two solvers must agree within
+//    the sum of their bounds, and each must have kkt_residual ≤ tol.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <random>
+
+#include "cdyn/error.hpp"
+#include "cdyn/qp.hpp"
+#include "cdyn/qp_pdas.hpp"
+
+namespace {
+
+using cdyn::BoundQP;
+using cdyn::QPOptions;
+using cdyn::QPResult;
+using cdyn::SparseMatrix;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// S = 5-point Laplacian of a k × k grid (or the 1D one, k × 1) + random diagonal
+// shift, plus, if `mass`, a P1-like consistent mass term that has positive off-diagonal
+// entries (so S is not an M-matrix, where plain PDAS is not guaranteed to converge).
+SparseMatrix grid_matrix(int kx, int ky, std::mt19937& gen, bool mass) {
+  std::uniform_real_distribution<double> shift(0.01, 1.0);
+  const int n = kx * ky;
+  std::vector<Eigen::Triplet<double>> t;
+  auto id = [&](int i, int j) { return j * kx + i; };
+  for (int j = 0; j < ky; ++j)
+    for (int i = 0; i < kx; ++i) {
+      const int p = id(i, j);
+      double diag = shift(gen);
+      auto link = [&](int q, double w) {
+        t.emplace_back(p, q, -w);
+        diag += w;
+      };
+      if (i > 0) link(id(i - 1, j), 1.0);
+      if (i + 1 < kx) link(id(i + 1, j), 1.0);
+      if (j > 0) link(id(i, j - 1), 1.0);
+      if (j + 1 < ky) link(id(i, j + 1), 1.0);
+      if (mass) {  // + 40 × (lumped-minus-consistent-like) term: 4/6 on the diagonal, 1/6 off
+        const double m = 40.0;
+        diag += m * 4.0 / 6.0;
+        if (i > 0) t.emplace_back(p, id(i - 1, j), m / 6.0);
+        if (i + 1 < kx) t.emplace_back(p, id(i + 1, j), m / 6.0);
+      }
+      t.emplace_back(p, p, diag);
+    }
+  SparseMatrix S(n, n);
+  S.setFromTriplets(t.begin(), t.end());
+  S.makeCompressed();
+  return S;
+}
+
+// r random; about half the unknowns get a lower bound, a quarter an upper bound,
+// some both; all chosen so that many bounds are active at the solution.
+BoundQP random_problem(int kx, int ky, unsigned seed, bool mass) {
+  std::mt19937 gen(seed);
+  BoundQP qp;
+  qp.S = grid_matrix(kx, ky, gen, mass);
+  const int n = kx * ky;
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  qp.r.resize(n);
+  qp.lower = VectorXd::Constant(n, -inf);
+  qp.upper = VectorXd::Constant(n, inf);
+  for (int i = 0; i < n; ++i) {
+    qp.r[i] = U(gen);
+    const double kind = 0.5 * (U(gen) + 1.0);
+    if (kind < 0.5) qp.lower[i] = 0.3 * U(gen) - 0.2;
+    else if (kind < 0.75) qp.upper[i] = 0.3 * U(gen) + 0.2;
+    else if (kind < 0.85) {
+      qp.lower[i] = -0.1 + 0.05 * U(gen);
+      qp.upper[i] = 0.1 + 0.05 * U(gen);
+    }
+  }
+  return qp;
+}
+
+// Exhaustive solution of a small strictly convex bound QP (n ≤ 8): every assignment
+// free / lower / upper, dense solve, KKT check.
+VectorXd brute_force(const BoundQP& qp) {
+  const int n = qp.size();
+  const MatrixXd S(qp.S);
+  int total = 1;
+  for (int i = 0; i < n; ++i) total *= 3;
+  for (int code = 0; code < total; ++code) {
+    std::vector<int> st(n);
+    int c = code;
+    bool ok = true;
+    for (int i = 0; i < n; ++i) {
+      st[i] = c % 3;
+      c /= 3;
+      if ((st[i] == 1 && !std::isfinite(qp.lower[i])) || (st[i] == 2 && !std::isfinite(qp.upper[i]))) ok = false;
+    }
+    if (!ok) continue;
+    VectorXd X = VectorXd::Zero(n);
+    std::vector<int> free;
+    for (int i = 0; i < n; ++i) {
+      if (st[i] == 1) X[i] = qp.lower[i];
+      else if (st[i] == 2) X[i] = qp.upper[i];
+      else free.push_back(i);
+    }
+    const int f = static_cast<int>(free.size());
+    if (f > 0) {
+      MatrixXd Sff(f, f);
+      VectorXd b(f);
+      for (int a = 0; a < f; ++a) {
+        b[a] = qp.r[free[a]] - S.row(free[a]).dot(X);
+        for (int bb = 0; bb < f; ++bb) Sff(a, bb) = S(free[a], free[bb]);
+      }
+      const VectorXd y = Sff.ldlt().solve(b);
+      for (int a = 0; a < f; ++a) X[free[a]] = y[a];
+    }
+    const VectorXd lam = S * X - qp.r;
+    const double eps = 1e-12;
+    bool kkt = true;
+    for (int i = 0; i < n && kkt; ++i) {
+      if (st[i] == 0) kkt = X[i] >= qp.lower[i] - eps && X[i] <= qp.upper[i] + eps;
+      if (st[i] == 1) kkt = lam[i] >= -eps;
+      if (st[i] == 2) kkt = lam[i] <= eps;
+    }
+    if (kkt) return X;
+  }
+  ADD_FAILURE() << "brute force found no KKT point";
+  return VectorXd::Zero(n);
+}
+
+// The a-posteriori bound on ‖X − X*‖_∞ (see the file header).
+struct ErrorBound {
+  VectorXd D;
+  double factor = 0;  // max_i D_i^-½ · (1 + L)/μ
+  explicit ErrorBound(const BoundQP& qp) {
+    D = cdyn::scaling_diagonal(qp);
+    const VectorXd s = D.cwiseSqrt().cwiseInverse();
+    const MatrixXd Shat = s.asDiagonal() * MatrixXd(qp.S) * s.asDiagonal();
+    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Shat, Eigen::EigenvaluesOnly);
+    const double mu = eig.eigenvalues().minCoeff(), L = eig.eigenvalues().maxCoeff();
+    factor = s.maxCoeff() * (1.0 + L) / mu;
+  }
+  double operator()(const BoundQP& qp, const QPResult& res) const {
+    const VectorXd F = cdyn::natural_residual(qp, res.X, res.reaction, D);
+    return factor * (D.cwiseSqrt().cwiseProduct(F)).norm();
+  }
+};
+
+// Every solver's result satisfies the KKT conditions with the right signs.
+void expect_kkt(const BoundQP& qp, const QPResult& res, double tol, const std::string& who) {
+  EXPECT_TRUE(res.converged) << who;
+  EXPECT_LE(res.kkt_residual, tol) << who;
+  EXPECT_NEAR(cdyn::kkt_residual(qp, res.X), res.kkt_residual, 1e-3 * tol) << who;
+  const double scale = std::max(res.X.lpNorm<Eigen::Infinity>(), 1.0);
+  for (int i = 0; i < qp.size(); ++i) {
+    EXPECT_GE(res.X[i], qp.lower[i] - tol * scale) << who << " i=" << i;
+    EXPECT_LE(res.X[i], qp.upper[i] + tol * scale) << who << " i=" << i;
+  }
+  const VectorXd D = cdyn::scaling_diagonal(qp);
+  std::vector<char> is_active(qp.size(), 0);
+  for (int i : res.active) is_active[i] = 1;
+  for (int i = 0; i < qp.size(); ++i) {
+    const double lam = res.reaction[i] / D[i];  // in units of X
+    if (!is_active[i]) {
+      EXPECT_LE(std::abs(lam), 2 * tol * scale) << who << " free i=" << i;
+    } else if (std::abs(res.X[i] - qp.lower[i]) <= std::abs(res.X[i] - qp.upper[i])) {
+      EXPECT_GE(lam, -2 * tol * scale) << who << " lower i=" << i;  // pushes up
+    } else {
+      EXPECT_LE(lam, 2 * tol * scale) << who << " upper i=" << i;   // pushes down
+    }
+  }
+}
+
+TEST(QPSolvers, SmallProblemsMatchExhaustiveEnumeration) {
+  // 2 × 4 and 8 × 1 grids, with and without the positive off-diagonal mass term
+  for (unsigned seed = 1; seed <= 6; ++seed)
+    for (bool mass : {false, true}) {
+      const BoundQP qp = seed % 2 ? random_problem(4, 2, seed, mass) : random_problem(8, 1, seed, mass);
+      const VectorXd exact = brute_force(qp);
+      for (const std::string& name : cdyn::step_solver_names()) {
+        auto solver = cdyn::make_step_solver(name, QPOptions{});
+        const QPResult res = solver->solve(qp);
+        expect_kkt(qp, res, 1e-10, name);
+        const ErrorBound bound(qp);
+        EXPECT_LE((res.X - exact).lpNorm<Eigen::Infinity>(), std::max(bound(qp, res), 1e-14))
+            << name << " seed " << seed << " mass " << mass;
+      }
+    }
+}
+
+TEST(QPSolvers, RandomGridProblemsAllSolversAgree) {
+  struct Case {
+    int kx, ky;
+    unsigned seed;
+    bool mass;
+  };
+  const Case cases[] = {{50, 1, 11, false}, {10, 10, 12, false}, {12, 12, 13, true}, {24, 24, 14, false}};
+  const double tol = 1e-10;
+  for (const Case& c : cases) {
+    const BoundQP qp = random_problem(c.kx, c.ky, c.seed, c.mass);
+    const ErrorBound bound(qp);
+    std::vector<QPResult> results;
+    std::vector<double> bounds;
+    for (const std::string& name : cdyn::step_solver_names()) {
+      QPOptions opt;
+      opt.tol = tol;
+      opt.pgs_omega = 1.5;
+      auto solver = cdyn::make_step_solver(name, opt);
+      results.push_back(solver->solve(qp));
+      expect_kkt(qp, results.back(), tol, name);
+      bounds.push_back(bound(qp, results.back()));
+      std::cout << "[ grid " << c.kx << "x" << c.ky << (c.mass ? " +mass" : "") << " ] " << name
+                << ": iterations " << results.back().iterations << ", kkt " << results.back().kkt_residual
+                << ", error bound " << bounds.back() << ", active " << results.back().active.size() << "\n";
+    }
+    for (std::size_t a = 0; a < results.size(); ++a)
+      for (std::size_t b = a + 1; b < results.size(); ++b) {
+        const double diff = (results[a].X - results[b].X).lpNorm<Eigen::Infinity>();
+        EXPECT_LE(diff, bounds[a] + bounds[b]) << cdyn::step_solver_names()[a] << " vs " << cdyn::step_solver_names()[b];
+        std::cout << "    |X_" << cdyn::step_solver_names()[a] << " - X_" << cdyn::step_solver_names()[b]
+                  << "|_inf = " << diff << " (bound " << bounds[a] + bounds[b] << ")\n";
+      }
+  }
+}
+
+TEST(QPSolvers, PdasWarmStartFromTheSolutionTakesOneIteration) {
+  const BoundQP qp = random_problem(20, 20, 21, true);
+  cdyn::PDASSolver pdas;
+  const QPResult cold = pdas.solve(qp);
+  EXPECT_GT(cold.iterations, 1);
+  const QPResult warm = pdas.solve(qp, &cold);
+  EXPECT_EQ(warm.iterations, 1);
+  EXPECT_TRUE(warm.converged);
+  EXPECT_EQ(warm.active, cold.active);
+  EXPECT_LE((warm.X - cold.X).lpNorm<Eigen::Infinity>(), 1e-13);
+  // a fresh solver object warm-started from it: also one iteration
+  cdyn::PDASSolver other;
+  EXPECT_EQ(other.solve(qp, &cold).iterations, 1);
+}
+
+TEST(QPSolvers, PdasRowUpdatesGiveTheSameAnswerAsRefactorization) {
+  // A sequence of right-hand sides, as in a time loop: S fixed, the active set moves.
+  BoundQP qp = random_problem(30, 30, 31, false);
+  QPOptions refactor_only;
+  refactor_only.pdas_update_limit = 0;
+  QPOptions updates;
+  updates.pdas_update_limit = 1000000;
+  cdyn::PDASSolver a(refactor_only), b(updates);
+  QPResult ra, rb;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> U(-0.05, 0.05);
+  for (int step = 0; step < 8; ++step) {
+    for (int i = 0; i < qp.size(); ++i) qp.r[i] += U(gen);
+    ra = a.solve(qp, step ? &ra : nullptr);
+    rb = b.solve(qp, step ? &rb : nullptr);
+    EXPECT_LE((ra.X - rb.X).lpNorm<Eigen::Infinity>(), 1e-12 * std::max(1.0, ra.X.lpNorm<Eigen::Infinity>()));
+    EXPECT_EQ(ra.active, rb.active);
+    EXPECT_LE(rb.kkt_residual, 1e-10);
+  }
+  EXPECT_EQ(a.counters().row_updates, 0);
+  EXPECT_GT(b.counters().row_updates, 0);
+  EXPECT_LT(b.counters().factorizations, a.counters().factorizations);
+  std::cout << "refactor only: " << a.counters().factorizations << " factorizations; with row updates: "
+            << b.counters().factorizations << " factorizations + " << b.counters().row_updates << " row updates\n";
+}
+
+TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
+  const BoundQP qp = random_problem(15, 15, 41, false);
+  cdyn::PDASSolver pdas;
+  const QPResult first = pdas.solve(qp);
+  const auto after_first = pdas.counters();
+  EXPECT_EQ(after_first.analyses, 1);
+  // same S, same active set: no new analysis, no new factorization, one solve
+  const QPResult again = pdas.solve(qp, &first);
+  EXPECT_EQ(pdas.counters().analyses, 1);
+  EXPECT_EQ(pdas.counters().factorizations, after_first.factorizations);
+  EXPECT_EQ(pdas.counters().solves, after_first.solves + 1);
+  EXPECT_EQ(again.iterations, 1);
+  // new values, same pattern: no new analysis
+  BoundQP scaled = qp;
+  scaled.S *= 2.0;
+  pdas.solve(scaled);
+  EXPECT_EQ(pdas.counters().analyses, 1);
+}
+
+// ----- saddle form -----------------------------------------------------------------------
+
+// A small saddle form: A = 1D Laplacian (n), B random sparse (m × n), C SPD tridiagonal;
+// the explicit S = A + c Bᵀ C⁻¹ B computed densely as the reference problem.
+struct SaddleCase {
+  BoundQP saddle_qp, explicit_qp;
+};
+SaddleCase saddle_case(int n, int m, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  SaddleCase sc;
+  std::vector<Eigen::Triplet<double>> ta, tb, tc;
+  for (int i = 0; i < n; ++i) {
+    ta.emplace_back(i, i, 2.0);
+    if (i > 0) ta.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) ta.emplace_back(i, i + 1, -1.0);
+  }
+  for (int k = 0; k < m; ++k) {
+    tc.emplace_back(k, k, 4.0 / 6.0);
+    if (k > 0) tc.emplace_back(k, k - 1, 1.0 / 6.0);
+    if (k + 1 < m) tc.emplace_back(k, k + 1, 1.0 / 6.0);
+    for (int j = 0; j < n; ++j)
+      if (std::abs(j * m - k * n) < 2 * n) tb.emplace_back(k, j, 0.5 + 0.25 * U(gen));
+  }
+  cdyn::SaddleForm f;
+  f.A.resize(n, n);
+  f.A.setFromTriplets(ta.begin(), ta.end());
+  f.B.resize(m, n);
+  f.B.setFromTriplets(tb.begin(), tb.end());
+  f.C.resize(m, m);
+  f.C.setFromTriplets(tc.begin(), tc.end());
+  f.c = 3.0;
+  const MatrixXd Sd = MatrixXd(f.A) + f.c * MatrixXd(f.B).transpose() * MatrixXd(f.C).inverse() * MatrixXd(f.B);
+  sc.explicit_qp.S = Sd.sparseView(0.0, 0.0);
+  sc.explicit_qp.S.makeCompressed();
+  sc.saddle_qp.saddle = f;
+  VectorXd r(n), lower(n), upper(n);
+  for (int i = 0; i < n; ++i) {
+    r[i] = 2.0 * U(gen);
+    lower[i] = i % 2 ? -0.05 + 0.05 * U(gen) : -inf;
+    upper[i] = i % 3 == 0 ? 0.1 + 0.05 * U(gen) : inf;
+  }
+  sc.saddle_qp.r = sc.explicit_qp.r = r;
+  sc.saddle_qp.lower = sc.explicit_qp.lower = lower;
+  sc.saddle_qp.upper = sc.explicit_qp.upper = upper;
+  return sc;
+}
+
+TEST(QPSolvers, SaddleFormGivesTheSameSolutionAsTheExplicitS) {
+  const SaddleCase sc = saddle_case(40, 25, 51);
+  // the reference: pdas on the dense-computed explicit S
+  auto reference_solver = cdyn::make_step_solver("pdas", QPOptions{});
+  const QPResult ref = reference_solver->solve(sc.explicit_qp);
+  ASSERT_GT(ref.active.size(), 3u);
+  const ErrorBound bound(sc.explicit_qp);
+  for (const std::string& name : {std::string("pdas"), std::string("ipopt"), std::string("nlopt")}) {
+    auto solver = cdyn::make_step_solver(name, QPOptions{});
+    const QPResult res = solver->solve(sc.saddle_qp);
+    expect_kkt(sc.saddle_qp, res, 1e-10, name + " (saddle)");
+    // the same measure on the explicit problem agrees
+    EXPECT_LE(cdyn::kkt_residual(sc.explicit_qp, res.X), 1e-9) << name;
+    const double diff = (res.X - ref.X).lpNorm<Eigen::Infinity>();
+    QPResult as_explicit = res;
+    as_explicit.reaction = sc.explicit_qp.S * res.X - sc.explicit_qp.r;
+    EXPECT_LE(diff, bound(sc.explicit_qp, ref) + bound(sc.explicit_qp, as_explicit)) << name;
+    EXPECT_EQ(res.active, ref.active) << name;
+    std::cout << "saddle " << name << ": |X - X_explicit|_inf = " << diff << ", iterations " << res.iterations
+              << "\n";
+  }
+  // warm start in saddle form: one iteration
+  cdyn::PDASSolver pdas;
+  const QPResult cold = pdas.solve(sc.saddle_qp);
+  EXPECT_EQ(pdas.solve(sc.saddle_qp, &cold).iterations, 1);
+}
+
+TEST(QPSolvers, PgsRefusesTheSaddleForm) {
+  const SaddleCase sc = saddle_case(10, 6, 3);
+  auto pgs = cdyn::make_step_solver("pgs", QPOptions{});
+  try {
+    pgs->solve(sc.saddle_qp);
+    FAIL() << "pgs accepted the saddle form";
+  } catch (const cdyn::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("saddle"), std::string::npos) << e.what();
+  }
+}
+
+// ----- the cycling guard -----------------------------------------------------------------
+
+// Plain PDAS (Newton-min) can cycle when S is not an M-matrix.  This 3 × 3 SPD case
+// (X ≥ 0) was found by a random search for a cold start that repeats an active set.
+// The test first replays plain PDAS densely (the rule of qp_pdas.hpp, with D = diag S)
+// to show that it cycles, then checks that the solver's guard still returns the exact,
+// enumerated solution.
+TEST(QPSolvers, PdasCyclingGuardStillFindsTheSolution) {
+  MatrixXd S(3, 3);
+  S << 13.1, 17, -4, 17, 26.1, -10, -4, -10, 8.1;
+  BoundQP qp;
+  qp.S = S.sparseView();
+  qp.S.makeCompressed();
+  qp.r = Eigen::Vector3d(0, 4, -4);
+  qp.lower = VectorXd::Zero(3);
+  qp.upper = VectorXd::Constant(3, inf);
+  ASSERT_GT(Eigen::SelfAdjointEigenSolver<MatrixXd>(S).eigenvalues().minCoeff(), 0.0);
+
+  // plain PDAS, dense: from the unconstrained solution
+  std::vector<std::vector<int>> seen;
+  VectorXd X = S.ldlt().solve(qp.r), lam = VectorXd::Zero(3);
+  bool cycles = false;
+  for (int it = 0; it < 20 && !cycles; ++it) {
+    std::vector<int> act(3);
+    for (int i = 0; i < 3; ++i) act[i] = lam[i] + S(i, i) * (0.0 - X[i]) > 0;
+    for (const auto& a : seen) cycles = cycles || (a == act && a != seen.back());
+    if (!seen.empty() && act == seen.back()) break;  // converged
+    seen.push_back(act);
+    MatrixXd St = S;
+    VectorXd b = qp.r;
+    for (int i = 0; i < 3; ++i)
+      if (act[i]) {
+        St.row(i).setZero();
+        St.col(i).setZero();
+        St(i, i) = 1;
+        b[i] = 0;
+      }
+    X = St.ldlt().solve(b);
+    lam = S * X - qp.r;
+  }
+  ASSERT_TRUE(cycles) << "plain PDAS does not cycle on this example any more";
+
+  cdyn::PDASSolver pdas;
+  const QPResult res = pdas.solve(qp);
+  EXPECT_GT(pdas.counters().damped_iterations, 0);
+  expect_kkt(qp, res, 1e-10, "pdas (guarded)");
+  const VectorXd exact = brute_force(qp);
+  EXPECT_LE((res.X - exact).lpNorm<Eigen::Infinity>(), 1e-14);
+  EXPECT_NEAR(exact[1], 4.0 / 26.1, 1e-15);  // only X_1 free: X_1 = r_1 / S_11
+  std::cout << "cycling example: " << res.iterations << " iterations, " << pdas.counters().damped_iterations
+            << " of them projected Newton\n";
+}
+
+// ----- bad input -------------------------------------------------------------------------
+
+template <class E>
+void expect_error(const BoundQP& qp, const std::string& solver, const std::string& fragment) {
+  auto s = cdyn::make_step_solver(solver, QPOptions{});
+  try {
+    s->solve(qp);
+    ADD_FAILURE() << solver << ": no error, expected one mentioning '" << fragment << "'";
+  } catch (const E& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << solver << ": " << e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << solver << ": wrong exception type: " << e.what();
+  }
+}
+
+TEST(QPSolvers, BadInputIsAClearError) {
+  const BoundQP good = random_problem(5, 5, 61, false);
+  for (const std::string& name : cdyn::step_solver_names()) {
+    BoundQP infeasible = good;
+    infeasible.lower[7] = 1.0;
+    infeasible.upper[7] = 0.5;
+    expect_error<cdyn::InputError>(infeasible, name, "empty");
+
+    BoundQP nan_r = good;
+    nan_r.r[3] = std::nan("");
+    expect_error<cdyn::InputError>(nan_r, name, "r[3]");
+
+    BoundQP inf_S = good;
+    inf_S.S.coeffRef(4, 4) = inf;
+    expect_error<cdyn::InputError>(inf_S, name, "not finite");
+
+    BoundQP nan_bound = good;
+    nan_bound.lower[2] = std::nan("");
+    expect_error<cdyn::InputError>(nan_bound, name, "NaN");
+
+    BoundQP indefinite = good;  // S − 10 I: symmetric, indefinite
+    for (int i = 0; i < indefinite.size(); ++i) indefinite.S.coeffRef(i, i) -= 10.0;
+    expect_error<cdyn::NumericalError>(indefinite, name, "not positive definite");
+
+    BoundQP unsymmetric = good;
+    unsymmetric.S.coeffRef(0, 1) += 0.5;
+    expect_error<cdyn::InputError>(unsymmetric, name, "symmetric");
+
+    BoundQP sizes = good;
+    sizes.upper.resize(3);
+    expect_error<cdyn::InputError>(sizes, name, "entries");
+  }
+  EXPECT_THROW(cdyn::make_step_solver("simplex", QPOptions{}), cdyn::InputError);
+  QPOptions bad_tol;
+  bad_tol.tol = -1;
+  EXPECT_THROW(cdyn::make_step_solver("pdas", bad_tol), cdyn::InputError);
+}
+
+TEST(QPSolvers, NonConvergenceIsReportedWithResidualAndIterations) {
+  const BoundQP qp = random_problem(20, 20, 71, false);
+  QPOptions opt;
+  opt.max_iterations = 3;  // pgs: 3 sweeps cannot reach 1e-10
+  auto pgs = cdyn::make_step_solver("pgs", opt);
+  try {
+    pgs->solve(qp);
+    FAIL() << "no error";
+  } catch (const cdyn::NumericalError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("KKT residual"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("after 3 iterations"), std::string::npos) << msg;
+  }
+  opt.throw_on_failure = false;
+  const QPResult res = cdyn::make_step_solver("pgs", opt)->solve(qp);
+  EXPECT_FALSE(res.converged);
+  EXPECT_GT(res.kkt_residual, 1e-10);
+}
+
+}  // namespace
