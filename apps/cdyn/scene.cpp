@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cdyn/error.hpp"
+#include "default_scene.hpp"
 
 namespace cdyn::app {
 
@@ -41,41 +42,7 @@ std::string type_name(const toml::node& n) {
 
 }  // namespace
 
-const char* default_scene_text() {
-  return R"(# The seed's membrane experiment (Renard, "A class of well-posed new approximations",
-# numerical experiments): a membrane over an obstacle, falling under its own weight.
-#   u_tt - Laplace(u) = f on the unit square, u = 0.02 on the boundary and at t = 0,
-#   u >= 0 at the vertices, P1+/P0, midpoint scheme with the constraint on the half step.
-name = "membrane"
-[mesh]
-kind = "unit_square"
-n = 20
-[physics]
-model = "membrane"
-f = "-0.6"
-[dirichlet]
-parts = "all"
-value = "0.02"
-[obstacle]
-where = "vertices"
-g = "0"
-[initial]
-u = "0.02"
-v = "0"
-[method]
-pair = "P1+/P0"
-[time]
-scheme = "midpoint"
-dt = 0.001
-T = 0.8
-[solver]
-name = "pdas"
-tol = 1e-12
-[output]
-every = 20
-probes = { centre = [0.5, 0.5] }
-)";
-}
+const char* default_scene_text() { return kDefaultSceneText; }
 
 Scene Scene::from_string(const std::string& text, const std::string& source) {
   Scene s;

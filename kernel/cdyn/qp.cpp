@@ -52,7 +52,7 @@ void check_symmetric(const SparseMatrix& M, const std::string& what) {
 
 // ----- input checks ----------------------------------------------------------------------
 
-void check_problem(const BoundQP& qp) {
+void check_problem(const BoundQP& qp, bool matrices) {
   const int n = qp.size();
   if (qp.lower.size() != n || qp.upper.size() != n)
     throw InputError("BoundQP: r has " + std::to_string(n) + " entries but lower has " +
@@ -65,8 +65,10 @@ void check_problem(const BoundQP& qp) {
     if (qp.S.rows() != n || qp.S.cols() != n)
       throw InputError("BoundQP: S is " + std::to_string(qp.S.rows()) + "x" + std::to_string(qp.S.cols()) +
                        " but r has " + std::to_string(n) + " entries");
-    check_finite(qp.S, "S");
-    check_symmetric(qp.S, "S");
+    if (matrices) {
+      check_finite(qp.S, "S");
+      check_symmetric(qp.S, "S");
+    }
   } else if (qp.saddle) {
     const SaddleForm& f = *qp.saddle;
     const long m = f.C.rows();
@@ -78,11 +80,13 @@ void check_problem(const BoundQP& qp) {
       throw InputError("BoundQP: saddle block B is " + std::to_string(f.B.rows()) + "x" +
                        std::to_string(f.B.cols()) + ", expected " + std::to_string(m) + "x" + std::to_string(n));
     if (!(std::isfinite(f.c) && f.c > 0)) throw InputError("BoundQP: saddle factor c = " + num(f.c) + " must be > 0");
-    check_finite(f.A, "A");
-    check_finite(f.B, "B");
-    check_finite(f.C, "C");
-    check_symmetric(f.A, "A");
-    check_symmetric(f.C, "C");
+    if (matrices) {
+      check_finite(f.A, "A");
+      check_finite(f.B, "B");
+      check_finite(f.C, "C");
+      check_symmetric(f.A, "A");
+      check_symmetric(f.C, "C");
+    }
   }
   for (int i = 0; i < n; ++i) {
     const std::string at = "[" + std::to_string(i) + "]";
@@ -95,6 +99,31 @@ void check_problem(const BoundQP& qp) {
       throw InputError("BoundQP: lower" + at + " = " + num(qp.lower[i]) + " > upper" + at + " = " +
                        num(qp.upper[i]) + ": the constraint set is empty");
   }
+}
+
+void CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std::string& solver) {
+  bool same = valid_;
+  if (same && qp.saddle)
+    same = S_.size() == 0 && qp.saddle->c == c_ && same_matrix(qp.saddle->A, A_) && same_matrix(qp.saddle->B, B_) &&
+           same_matrix(qp.saddle->C, C_);
+  else if (same)
+    same = A_.size() == 0 && same_matrix(qp.S, S_);
+  check_problem(qp, !same);
+  if (same) return;
+  valid_ = false;
+  if (qp.saddle) {
+    A_ = qp.saddle->A;
+    B_ = qp.saddle->B;
+    C_ = qp.saddle->C;
+    c_ = qp.saddle->c;
+    S_ = SparseMatrix();
+  } else {
+    if (positive_definite && qp.size() > 0) check_positive_definite(qp.S, solver + ": S");
+    S_ = qp.S;
+    A_ = B_ = C_ = SparseMatrix();
+  }
+  for (SparseMatrix* M : {&S_, &A_, &B_, &C_}) M->makeCompressed();
+  valid_ = true;
 }
 
 // ----- the common KKT measure ------------------------------------------------------------

@@ -67,9 +67,10 @@ struct QPOptions {
   bool throw_on_failure = true;  // false: return with converged = false instead of throwing
   // pdas: active-set changes of at most this many unknowns are applied to the current
   // Cholesky factor by row additions/deletions instead of refactorizing (0: always refactor)
-  int pdas_update_limit = 100;
+  int pdas_update_limit = 200;
   double pgs_omega = 1.0;      // pgs: over-relaxation factor, 0 < ω < 2
   int pgs_check_every = 10;    // pgs: sweeps between two evaluations of the KKT residual
+  bool ipopt_crossover = true;  // ipopt: finish by PDAS steps from Ipopt's active set if above tol
   std::string nlopt_algorithm = "LD_LBFGS";  // nlopt: LD_LBFGS or LD_CCSAQ
   int nlopt_polish_rounds = 3;  // nlopt: active-set identification + reduced solve after it stops
 };
@@ -109,8 +110,23 @@ double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::Ve
 
 // Throws InputError when sizes disagree, S (or A, B, C) or r contain NaN/Inf, S is not
 // symmetric, a bound is NaN, lower > upper somewhere (an empty feasible set), or both
-// or neither of S and saddle are given.
-void check_problem(const BoundQP& qp);
+// or neither of S and saddle are given.  matrices = false skips the O(nnz) checks of
+// the matrices (see CheckedMatrices).
+void check_problem(const BoundQP& qp, bool matrices = true);
+
+// check_problem() (and, on request, check_positive_definite() of an explicit S) for a
+// solver object that lives across time steps: the matrices are checked only when they
+// differ from those of the last call (pattern or values), so a time loop with an
+// unchanged S pays for the checks once.
+class CheckedMatrices {
+ public:
+  void check(const BoundQP& qp, bool positive_definite, const std::string& solver);
+
+ private:
+  bool valid_ = false;
+  SparseMatrix S_, A_, B_, C_;
+  double c_ = 0.0;
+};
 
 // D = diag(S); in saddle form diag(A) + c Σ_k B_kj² / C_kk (C replaced by its diagonal:
 // a scaling, not the exact diagonal, which would need C⁻¹).

@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 
 #include "cdyn/error.hpp"
+#include "cdyn/qp_pdas.hpp"
 
 namespace cdyn {
 
@@ -180,17 +180,18 @@ std::string status_name(Ipopt::ApplicationReturnStatus s) {
 
 IpoptSolver::IpoptSolver(const QPOptions& options) : options_(options) {
   if (options_.max_iterations == 0) options_.max_iterations = 3000;
+  QPOptions crossover = options_;
+  crossover.max_iterations = 3;
+  crossover.throw_on_failure = false;
+  crossover_ = std::make_unique<PDASSolver>(crossover);
 }
+
+IpoptSolver::~IpoptSolver() = default;
 
 QPResult IpoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
-  check_problem(qp);
+  checked_.check(qp, /*positive_definite=*/true, "ipopt");
   const int n = qp.size();
-  if (!qp.saddle && n > 0 && !same_matrix(qp.S, checked_S_)) {
-    check_positive_definite(qp.S, "ipopt: S");
-    checked_S_ = qp.S;
-    checked_S_.makeCompressed();
-  }
   form_.set(qp);
   QPResult result;
   std::string detail;
@@ -203,10 +204,10 @@ QPResult IpoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
 
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication();
     auto& o = *app->Options();
-    o.SetIntegerValue("print_level", std::getenv("QPDBG") ? 5 : 0);
+    o.SetIntegerValue("print_level", 0);
     o.SetStringValue("sb", "yes");
     o.SetNumericValue("bound_relax_factor", 0.0);
-    o.SetNumericValue("tol", std::getenv("QPTOL") ? std::atof(std::getenv("QPTOL")) : 1e-3 * options_.tol);
+    o.SetNumericValue("tol", 1e-3 * options_.tol);
     o.SetIntegerValue("max_iter", options_.max_iterations);
     o.SetStringValue("hessian_constant", "yes");
     o.SetStringValue("jac_c_constant", "yes");
@@ -230,6 +231,17 @@ QPResult IpoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     if (status != Ipopt::Solve_Succeeded) detail = status_name(status);
   }
   finish_result(qp, form_, options_.tol, result);
+  last_ = Statistics{result.iterations, result.kkt_residual, 0};
+  if (!result.converged && options_.ipopt_crossover && n > 0) {
+    // crossover: from the active set Ipopt identified, at most 3 PDAS steps (exact solves)
+    const QPResult polished = crossover_->solve(qp, &result);
+    if (polished.kkt_residual < result.kkt_residual) {
+      result = polished;
+      result.iterations = last_.ipopt_iterations + polished.iterations;
+      last_.crossover_solves = polished.iterations;
+      if (result.converged) detail.clear();
+    }
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   report_failure("ipopt", options_, result, detail);
   return result;

@@ -19,7 +19,7 @@ struct Objective {
   const QuadraticForm* form = nullptr;
   double tol = 0.0;
   int evaluations = 0;
-  Eigen::VectorXd best;           // the first evaluated X whose KKT residual is ≤ tol
+  Eigen::VectorXd best;  // the first evaluated X whose KKT residual is ≤ tol
   bool found = false;
   nlopt_opt opt = nullptr;
 };
@@ -54,13 +54,8 @@ NLoptSolver::NLoptSolver(const QPOptions& options) : options_(options) {
 
 QPResult NLoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
-  check_problem(qp);
+  checked_.check(qp, /*positive_definite=*/true, "nlopt");
   const int n = qp.size();
-  if (!qp.saddle && n > 0 && !same_matrix(qp.S, checked_S_)) {
-    check_positive_definite(qp.S, "nlopt: S");
-    checked_S_ = qp.S;
-    checked_S_.makeCompressed();
-  }
   form_.set(qp);
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
@@ -70,7 +65,7 @@ QPResult NLoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   if (warm_start && warm_start->X.size() == n) X = warm_start->X;
   for (int i = 0; i < n; ++i) X[i] = std::clamp(X[i], l[i], u[i]);
 
-  int products = 0;
+  int products = 0;  // products with S: the cost measure of a matrix-free method
   if (n > 0) {
     Objective data;
     data.qp = &qp;
@@ -97,7 +92,8 @@ QPResult NLoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   result.X = X;
   finish_result(qp, form_, options_.tol, result);
 
-  // polishing: identify the active set, solve the reduced system by PCG
+  // Polishing: the active set by the PDAS rule, then S_II X_I = r_I − S_IA X_A by
+  // Jacobi-preconditioned conjugate gradients (matrix-free).
   const Eigen::VectorXd D = scaling_diagonal(qp);
   for (int round = 0; round < options_.nlopt_polish_rounds && !result.converged && n > 0; ++round) {
     std::vector<char> active(n, 0);

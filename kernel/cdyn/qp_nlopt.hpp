@@ -30,7 +30,7 @@ class NLoptSolver : public StepSolver {
 
  private:
   QPOptions options_;
-  SparseMatrix checked_S_;
+  CheckedMatrices checked_;  // input checks (and the PD check of S) once per distinct S
   QuadraticForm form_;
 };
 

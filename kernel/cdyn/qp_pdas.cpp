@@ -50,6 +50,7 @@ constexpr signed char kFree = 0, kLower = -1, kUpper = 1;
 struct PDASSolver::Impl {
   QPOptions opt;
   Counters counters;
+  CheckedMatrices checked;
   QuadraticForm form;
 
   // explicit S
@@ -224,8 +225,8 @@ const PDASSolver::Counters& PDASSolver::counters() const { return impl_->counter
 
 QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
-  check_problem(qp);
   Impl& s = *impl_;
+  s.checked.check(qp, /*positive_definite=*/false, "pdas");  // its own factorization checks S
   const QPOptions& opt = s.opt;
   const int n = qp.size();
   QPResult result;

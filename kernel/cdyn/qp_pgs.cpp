@@ -18,17 +18,12 @@ PGSSolver::PGSSolver(const QPOptions& options) : options_(options) {
 
 QPResult PGSSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
-  check_problem(qp);
   if (qp.saddle)
     throw InputError(
         "pgs: projected Gauss-Seidel needs the entries of S, but the problem is given in saddle form "
         "(S = A + c B^T C^-1 B with C^-1 dense); use solver pdas or ipopt");
+  checked_.check(qp, /*positive_definite=*/true, "pgs");
   const int n = qp.size();
-  if (!same_matrix(qp.S, checked_S_) && n > 0) {
-    check_positive_definite(qp.S, "pgs: S");
-    checked_S_ = qp.S;
-    checked_S_.makeCompressed();
-  }
   form_.set(qp);
   const SparseMatrix& S = qp.S;  // symmetric: column i is row i
   const Eigen::VectorXd& l = qp.lower;

@@ -27,7 +27,7 @@ class PGSSolver : public StepSolver {
 
  private:
   QPOptions options_;
-  SparseMatrix checked_S_;  // the last S found positive definite
+  CheckedMatrices checked_;  // input checks (and the PD check of S) once per distinct S
   QuadraticForm form_;
 };
 

@@ -22,25 +22,28 @@ ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) 
   p.A = p.bc->restrict(p.A_full);
 
   // K̄^h: u(a_i) ≥ g(a_i) at the free vertex dofs (never at bubble or edge dofs).
+  // The constrained dofs are found even when the obstacle is disabled: the
+  // redistributed mass depends on them, and the unconstrained run must keep the same M.
   const double inf = std::numeric_limits<double>::infinity();
   p.lower = Eigen::VectorXd::Constant(p.n_free(), -inf);
   p.upper = Eigen::VectorXd::Constant(p.n_free(), inf);
-  if (d.obstacle) {
-    std::vector<int> vertices;
-    if (d.obstacle_on_all_vertices) {
-      for (int v = 0; v < mesh.n_vertices(); ++v) vertices.push_back(v);
-    } else {
-      vertices = mesh.part_vertices(d.obstacle_parts);
-    }
-    for (int v : vertices) {
-      const int i = p.bc->free_index(W.vertex_dof(v));
-      if (i < 0) continue;  // a Dirichlet vertex is not constrained
-      const Point& a = mesh.vertices[v];
-      p.lower[i] = d.obstacle_g(a.x, a.y, 0.0);
-      p.constrained.push_back(i);
-    }
+  std::vector<int> vertices;
+  if (d.obstacle_on_all_vertices) {
+    for (int v = 0; v < mesh.n_vertices(); ++v) vertices.push_back(v);
+  } else {
+    vertices = mesh.part_vertices(d.obstacle_parts);
   }
-  p.mass = make_mass_model(W, *p.bc, d.velocity, d.rho, p.constrained);
+  std::vector<int> contact;
+  for (int v : vertices) {
+    const int i = p.bc->free_index(W.vertex_dof(v));
+    if (i < 0) continue;  // a Dirichlet vertex is not constrained
+    contact.push_back(i);
+    if (!d.obstacle) continue;
+    const Point& a = mesh.vertices[v];
+    p.lower[i] = d.obstacle_g(a.x, a.y, 0.0);
+    p.constrained.push_back(i);
+  }
+  p.mass = make_mass_model(W, *p.bc, d.velocity, d.rho, contact);
   return p;
 }
 
