@@ -111,42 +111,36 @@ const toml::node* Scene::find(const std::string& key) const {
 
 bool Scene::has(const std::string& key) const { return find(key) != nullptr; }
 
-double Scene::number(const std::string& key, std::optional<double> fallback) const {
+const toml::node* Scene::find_required(const std::string& key, bool has_fallback) const {
   const toml::node* n = find(key);
-  if (!n) {
-    if (fallback) return *fallback;
-    throw InputError(source_ + ": missing key '" + key + "'");
-  }
+  if (!n && !has_fallback) throw InputError(source_ + ": missing key '" + key + "'");
+  return n;
+}
+
+double Scene::number(const std::string& key, std::optional<double> fallback) const {
+  const toml::node* n = find_required(key, fallback.has_value());
+  if (!n) return *fallback;
   if (auto v = n->value<double>()) return *v;  // integers convert too
   throw InputError(key + ": expected a number, got " + type_name(*n));
 }
 
 int Scene::integer(const std::string& key, std::optional<int> fallback) const {
-  const toml::node* n = find(key);
-  if (!n) {
-    if (fallback) return *fallback;
-    throw InputError(source_ + ": missing key '" + key + "'");
-  }
+  const toml::node* n = find_required(key, fallback.has_value());
+  if (!n) return *fallback;
   if (auto v = n->value_exact<int64_t>()) return static_cast<int>(*v);
   throw InputError(key + ": expected an integer, got " + type_name(*n));
 }
 
 bool Scene::boolean(const std::string& key, std::optional<bool> fallback) const {
-  const toml::node* n = find(key);
-  if (!n) {
-    if (fallback) return *fallback;
-    throw InputError(source_ + ": missing key '" + key + "'");
-  }
+  const toml::node* n = find_required(key, fallback.has_value());
+  if (!n) return *fallback;
   if (auto v = n->value_exact<bool>()) return *v;
   throw InputError(key + ": expected true or false, got " + type_name(*n));
 }
 
 std::string Scene::string(const std::string& key, std::optional<std::string> fallback) const {
-  const toml::node* n = find(key);
-  if (!n) {
-    if (fallback) return *fallback;
-    throw InputError(source_ + ": missing key '" + key + "'");
-  }
+  const toml::node* n = find_required(key, fallback.has_value());
+  if (!n) return *fallback;
   if (auto v = n->value_exact<std::string>()) return *v;
   // Numbers given where an expression is expected ("f = -0.6" or --set physics.f=1)
   if (auto v = n->value<double>()) {

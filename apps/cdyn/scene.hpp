@@ -43,6 +43,8 @@ class Scene {
 
  private:
   const toml::node* find(const std::string& key) const;
+  // The node of a key; nullptr when absent and a fallback exists, else InputError.
+  const toml::node* find_required(const std::string& key, bool has_fallback) const;
   void validate(const toml::table& t, const std::string& prefix) const;
 
   toml::table table_;

@@ -11,7 +11,7 @@
 //  - Theorem 2: J is constant along the exact solution, computed modally.
 // Tolerances: everything is an exact identity evaluated in floating point on matrices
 // of at most a few hundred rows, with condition numbers of mass matrices (≤ 1e3);
-// the worst round-off measured is printed by each test and is 1e-15 .. 1e-14 relative;
+// the worst round-off measured is printed by each test and is ≤ 3e-15 relative;
 // the tolerances (1e-13 for identities, 1e-12 for the moments as the issue asks, 1e-11
 // for the energy, which goes through two dense eigen-decompositions) leave ~10–100×.
 #include <gtest/gtest.h>
