@@ -24,6 +24,15 @@ struct RunOptions {
 };
 int cmd_run(const RunOptions& options);
 
+// `cdyn wellposed [SCENE.toml] [--set key=value]... [--json]`: condition (12) for
+// every pair on the scene's mesh and constraints.
+struct WellposedOptions {
+  std::string scene;
+  std::vector<std::string> sets;
+  bool json = false;
+};
+int cmd_wellposed(const WellposedOptions& options);
+
 // Condition (12) for a simulation's pair and constraints, as summary.json's
 // "wellposed" entry ({"beta", "satisfied"}, or why it was not computed), and as a
 // phrase for the final paragraph.

@@ -22,6 +22,12 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_options.sets, "override a scene key, e.g. --set time.dt=0.002")->allow_extra_args(false);
   run->add_flag("--quiet", run_options.quiet, "no progress line and no final summary");
 
+  cdyn::app::WellposedOptions wp_options;
+  auto* wellposed = app.add_subcommand("wellposed", "Condition (12) for every pair on a scene's mesh and constraints");
+  wellposed->add_option("SCENE", wp_options.scene, "a scene file (.toml); none: the default scene");
+  wellposed->add_option("--set", wp_options.sets, "override a scene key")->allow_extra_args(false);
+  wellposed->add_flag("--json", wp_options.json, "print the table as JSON");
+
   std::string mesh_file;
   auto* mesh = app.add_subcommand("mesh", "Summarise a mesh (.geo or .msh) and its physical groups");
   mesh->add_option("FILE", mesh_file, "a gmsh .geo or .msh (2.2 or 4.1) file")->required();
@@ -42,6 +48,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) return cdyn::app::cmd_run(run_options);
+    if (*wellposed) return cdyn::app::cmd_wellposed(wp_options);
     if (*mesh) return cdyn::app::cmd_mesh(mesh_file);
   } catch (const cdyn::InputError& e) {
     std::cerr << "cdyn: error: " << e.what() << "\n";

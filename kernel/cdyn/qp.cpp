@@ -101,7 +101,7 @@ void check_problem(const BoundQP& qp, bool matrices) {
   }
 }
 
-void CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std::string& solver) {
+bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std::string& solver) {
   bool same = valid_;
   if (same && qp.saddle)
     same = S_.size() == 0 && qp.saddle->c == c_ && same_matrix(qp.saddle->A, A_) && same_matrix(qp.saddle->B, B_) &&
@@ -109,7 +109,7 @@ void CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std
   else if (same)
     same = A_.size() == 0 && same_matrix(qp.S, S_);
   check_problem(qp, !same);
-  if (same) return;
+  if (same) return false;
   valid_ = false;
   if (qp.saddle) {
     A_ = qp.saddle->A;
@@ -124,6 +124,7 @@ void CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std
   }
   for (SparseMatrix* M : {&S_, &A_, &B_, &C_}) M->makeCompressed();
   valid_ = true;
+  return true;
 }
 
 // ----- the common KKT measure ------------------------------------------------------------
@@ -149,9 +150,10 @@ Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X, co
   return F;
 }
 
-double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction) {
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                    const Eigen::VectorXd* D_known) {
   if (qp.size() == 0) return 0.0;
-  const Eigen::VectorXd D = scaling_diagonal(qp);
+  const Eigen::VectorXd D = D_known ? *D_known : scaling_diagonal(qp);
   const double F = natural_residual(qp, X, reaction, D).lpNorm<Eigen::Infinity>();
   const double scale = std::max(X.lpNorm<Eigen::Infinity>(), qp.r.cwiseQuotient(D).lpNorm<Eigen::Infinity>());
   if (!std::isfinite(F)) return std::numeric_limits<double>::infinity();
@@ -178,8 +180,8 @@ std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X, const E
 
 void finish_result(const BoundQP& qp, const QuadraticForm& form, double tol, QPResult& result) {
   result.reaction = form.apply(result.X) - qp.r;
-  const Eigen::VectorXd D = scaling_diagonal(qp);
-  result.kkt_residual = kkt_residual(qp, result.X, result.reaction);
+  const Eigen::VectorXd& D = form.diagonal();
+  result.kkt_residual = kkt_residual(qp, result.X, result.reaction, &D);
   result.active = active_set(qp, result.X, result.reaction, D);
   result.converged = result.kkt_residual <= tol;
 }
@@ -217,6 +219,7 @@ QuadraticForm::~QuadraticForm() = default;
 
 void QuadraticForm::set(const BoundQP& qp) {
   qp_ = &qp;
+  D_ = scaling_diagonal(qp);
   if (!qp.saddle) return;
   const SparseMatrix& C = qp.saddle->C;
   if (c_factor_ && same_matrix(C, C_)) return;

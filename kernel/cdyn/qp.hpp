@@ -104,7 +104,8 @@ std::vector<std::string> step_solver_names();
 // The common KKT measure (see above).  For the saddle form it factorizes C each call;
 // solvers use the overload taking the gradient λ = S X − r they already have.
 double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X);
-double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction);
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                    const Eigen::VectorXd* D = nullptr);  // D = scaling_diagonal(qp) if already known
 
 // ----- building blocks shared by the solvers ------------------------------------------
 
@@ -120,7 +121,8 @@ void check_problem(const BoundQP& qp, bool matrices = true);
 // unchanged S pays for the checks once.
 class CheckedMatrices {
  public:
-  void check(const BoundQP& qp, bool positive_definite, const std::string& solver);
+  // Returns true when the matrices were new (and have now been checked).
+  bool check(const BoundQP& qp, bool positive_definite, const std::string& solver);
 
  private:
   bool valid_ = false;
@@ -179,9 +181,11 @@ class QuadraticForm {
   void set(const BoundQP& qp);
   Eigen::VectorXd apply(const Eigen::VectorXd& X) const;
   double objective(const Eigen::VectorXd& X) const;  // ½ Xᵀ S X − rᵀ X
+  const Eigen::VectorXd& diagonal() const { return D_; }  // scaling_diagonal(qp), computed by set()
 
  private:
   const BoundQP* qp_ = nullptr;
+  Eigen::VectorXd D_;
   SparseMatrix C_;
   std::unique_ptr<SparseCholesky> c_factor_;
 };

@@ -31,7 +31,7 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   const Eigen::Map<const Eigen::VectorXd> X(x, n);
   const Eigen::VectorXd g = o.form->apply(X) - o.qp->r;
   if (grad) Eigen::Map<Eigen::VectorXd>(grad, n) = g;
-  if (!o.found && kkt_residual(*o.qp, X, g) <= o.tol) {
+  if (!o.found && kkt_residual(*o.qp, X, g, &o.form->diagonal()) <= o.tol) {
     o.found = true;
     o.best = X;
     nlopt_force_stop(o.opt);
@@ -94,7 +94,7 @@ QPResult NLoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
 
   // Polishing: the active set by the PDAS rule, then S_II X_I = r_I − S_IA X_A by
   // Jacobi-preconditioned conjugate gradients (matrix-free).
-  const Eigen::VectorXd D = scaling_diagonal(qp);
+  const Eigen::VectorXd& D = form_.diagonal();
   for (int round = 0; round < options_.nlopt_polish_rounds && !result.converged && n > 0; ++round) {
     std::vector<char> active(n, 0);
     for (int i = 0; i < n; ++i) {

@@ -70,10 +70,12 @@ struct PDASSolver::Impl {
   int n = 0;
 
   // Makes the cached factorizations those of qp's matrix (analysis, PD check).
-  void prepare(const BoundQP& qp) {
+  void prepare(const BoundQP& qp, bool new_matrices) {
     form.set(qp);
     n = qp.size();
+    const bool was_saddle = saddle;
     saddle = qp.saddle.has_value();
+    if (!new_matrices && saddle == was_saddle && (saddle ? lu_factorized : chol.factorized())) return;
     if (!saddle) {
       if (same_matrix(qp.S, S) && chol.factorized()) return;
       S = qp.S;
@@ -226,12 +228,13 @@ const PDASSolver::Counters& PDASSolver::counters() const { return impl_->counter
 QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
   Impl& s = *impl_;
-  s.checked.check(qp, /*positive_definite=*/false, "pdas");  // its own factorization checks S
+  const bool new_matrices = s.checked.check(qp, /*positive_definite=*/false, "pdas");  // PD: by its own factorization
   const QPOptions& opt = s.opt;
   const int n = qp.size();
   QPResult result;
+  bool finished = false;  // result.reaction, kkt_residual, active already computed for result.X
   auto finish = [&](const std::string& detail) {
-    finish_result(qp, s.form, opt.tol, result);
+    if (!finished) finish_result(qp, s.form, opt.tol, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report_failure("pdas", opt, result, detail);
     return result;
@@ -241,10 +244,10 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     result.X.resize(0);
     return finish("");
   }
-  s.prepare(qp);
+  s.prepare(qp, new_matrices);
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
-  const Eigen::VectorXd D = scaling_diagonal(qp);
+  const Eigen::VectorXd& D = s.form.diagonal();
   for (int i = 0; i < n; ++i)
     if (!(D[i] > 0)) throw NumericalError("pdas: S has a non-positive diagonal entry: it is not positive definite");
 
@@ -304,7 +307,10 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     if (next == state) {
       // X is exact up to the linear solve: refine if the residual says it is not enough
       result.X = X;
-      finish_result(qp, s.form, opt.tol, result);
+      result.reaction = lam;
+      result.kkt_residual = kkt_residual(qp, X, lam, &D);
+      result.active = active_set(qp, X, lam, D);
+      result.converged = result.kkt_residual <= opt.tol;
       for (int k = 0; k < 2 && !result.converged; ++k) {
         Eigen::VectorXd top = -result.reaction;
         for (int i = 0; i < n; ++i)
@@ -319,9 +325,10 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
         s.set_active(active, true);
         continue;
       }
+      finished = true;
       return finish("active set repeated but the residual stays above tol: S is ill-conditioned");
     }
-    if (kkt_residual(qp, X, lam) <= opt.tol) {
+    if (kkt_residual(qp, X, lam, &D) <= opt.tol) {
       result.X = X;  // degenerate unknowns (λ_i ≈ 0 at the bound) may still switch: X is good
       return finish("");
     }
@@ -346,7 +353,7 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     ++s.counters.damped_iterations;
     result.iterations = it;
     lam = s.form.apply(X) - qp.r;
-    if (kkt_residual(qp, X, lam) <= opt.tol) {
+    if (kkt_residual(qp, X, lam, &D) <= opt.tol) {
       result.X = X;
       return finish("");
     }
