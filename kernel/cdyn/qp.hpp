@@ -66,8 +66,9 @@ struct QPOptions {
   int max_iterations = 0;      // 0: the solver's own default (see each solver's header)
   bool throw_on_failure = true;  // false: return with converged = false instead of throwing
   // pdas: active-set changes of at most this many unknowns are applied to the current
-  // Cholesky factor by row additions/deletions instead of refactorizing (0: always refactor)
-  int pdas_update_limit = 200;
+  // Cholesky factor by row additions/deletions instead of refactorizing (0: always
+  // refactor; −1: max(300, n/100), the break-even measured in docs/performance.md)
+  int pdas_update_limit = -1;
   double pgs_omega = 1.0;      // pgs: over-relaxation factor, 0 < ω < 2
   int pgs_check_every = 10;    // pgs: sweeps between two evaluations of the KKT residual
   bool ipopt_crossover = true;  // ipopt: finish by PDAS steps from Ipopt's active set if above tol

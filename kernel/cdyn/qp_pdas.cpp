@@ -3,6 +3,7 @@
 #include "cdyn/qp_pdas.hpp"
 
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -160,7 +161,8 @@ struct PDASSolver::Impl {
       if (active[i] != factor_active[i]) (active[i] ? to_delete : to_add).push_back(i);
     const int changes = static_cast<int>(to_delete.size() + to_add.size());
     if (changes == 0) return;
-    if (changes > opt.pdas_update_limit) return refactorize(active);
+    const int limit = opt.pdas_update_limit >= 0 ? opt.pdas_update_limit : std::max(300, n / 100);
+    if (changes > limit) return refactorize(active);
     for (int i : to_delete) {
       chol.replace_by_identity(i);
       factor_active[i] = 1;

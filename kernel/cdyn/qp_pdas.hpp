@@ -19,8 +19,8 @@
 //   - explicit S: one CHOLMOD analysis serves every active set and every call; the
 //     numeric factor is kept across calls (a time loop with an unchanged S and active
 //     set pays one forward/back solve per step); a change of at most
-//     QPOptions::pdas_update_limit unknowns is applied to the factor by
-//     cholmod_rowdel / cholmod_rowadd instead of refactorizing;
+//     QPOptions::pdas_update_limit unknowns (default max(300, n/100)) is applied to the
+//     factor by cholmod_rowdel / cholmod_rowadd instead of refactorizing;
 //   - saddle form: the same elimination in K = [[A, c Bᵀ], [B, −C]] (X rows only), LU
 //     by UMFPACK, symbolic analysis kept while K's pattern is unchanged; no updates.
 // A new explicit S is factorized once whole first: that checks it is positive definite
