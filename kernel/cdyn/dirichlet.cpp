@@ -43,31 +43,29 @@ Eigen::VectorXd DirichletLift::extend(const Eigen::VectorXd& Uf, const Eigen::Ve
   return U;
 }
 
-SparseMatrix DirichletLift::restrict_columns(const SparseMatrix& B) const {
+SparseMatrix submatrix(const SparseMatrix& S, const std::vector<int>& row_index, int n_rows,
+                       const std::vector<int>& col_index, int n_cols) {
   std::vector<Eigen::Triplet<double>> t;
-  t.reserve(B.nonZeros());
-  for (int j = 0; j < B.outerSize(); ++j) {
-    if (free_index_[j] < 0) continue;
-    for (SparseMatrix::InnerIterator it(B, j); it; ++it) t.emplace_back(it.row(), free_index_[j], it.value());
+  t.reserve(S.nonZeros());
+  for (int j = 0; j < S.outerSize(); ++j) {
+    if (col_index[j] < 0) continue;
+    for (SparseMatrix::InnerIterator it(S, j); it; ++it)
+      if (row_index[it.row()] >= 0) t.emplace_back(row_index[it.row()], col_index[j], it.value());
   }
-  SparseMatrix R(B.rows(), n_free());
+  SparseMatrix R(n_rows, n_cols);
   R.setFromTriplets(t.begin(), t.end());
   R.makeCompressed();
   return R;
 }
 
+SparseMatrix DirichletLift::restrict_columns(const SparseMatrix& B) const {
+  std::vector<int> all_rows(B.rows());
+  for (int i = 0; i < B.rows(); ++i) all_rows[i] = i;
+  return submatrix(B, all_rows, static_cast<int>(B.rows()), free_index_, n_free());
+}
+
 SparseMatrix DirichletLift::restrict(const SparseMatrix& A) const {
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(A.nonZeros());
-  for (int j = 0; j < A.outerSize(); ++j) {
-    if (free_index_[j] < 0) continue;
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
-      if (free_index_[it.row()] >= 0) t.emplace_back(free_index_[it.row()], free_index_[j], it.value());
-  }
-  SparseMatrix R(n_free(), n_free());
-  R.setFromTriplets(t.begin(), t.end());
-  R.makeCompressed();
-  return R;
+  return submatrix(A, free_index_, n_free(), free_index_, n_free());
 }
 
 }  // namespace cdyn

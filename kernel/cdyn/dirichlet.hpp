@@ -18,6 +18,11 @@
 
 namespace cdyn {
 
+// The entries of S whose row and column both survive: row_index / col_index map an
+// old row / column to its new index, or to −1 to drop it (n_rows × n_cols result).
+SparseMatrix submatrix(const SparseMatrix& S, const std::vector<int>& row_index, int n_rows,
+                       const std::vector<int>& col_index, int n_cols);
+
 class DirichletLift {
  public:
   // Fixes every component of the dofs on the named parts (indices into

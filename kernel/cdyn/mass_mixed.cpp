@@ -10,23 +10,6 @@ namespace cdyn {
 
 namespace {
 
-// The entries of S whose row and column both survive: row_index / col_index map an old
-// row / column to its new index, or to −1 to drop it.
-SparseMatrix select(const SparseMatrix& S, const std::vector<int>& row_index, int n_rows,
-                    const std::vector<int>& col_index, int n_cols) {
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(S.nonZeros());
-  for (int j = 0; j < S.outerSize(); ++j) {
-    if (col_index[j] < 0) continue;
-    for (SparseMatrix::InnerIterator it(S, j); it; ++it)
-      if (row_index[it.row()] >= 0) t.emplace_back(row_index[it.row()], col_index[j], it.value());
-  }
-  SparseMatrix R(n_rows, n_cols);
-  R.setFromTriplets(t.begin(), t.end());
-  R.makeCompressed();
-  return R;
-}
-
 void check_size(const Eigen::VectorXd& x, Eigen::Index n, const char* what) {
   if (x.size() != n)
     throw InputError(std::string("mass model: ") + what + " has " + std::to_string(x.size()) + " entries, expected " +
@@ -124,8 +107,8 @@ MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, 
   }
   std::vector<int> col_index(W.n_dofs());
   for (int j = 0; j < W.n_dofs(); ++j) col_index[j] = bc.free_index(j);
-  out.B = rho * select(Bfull, row_index, nh, col_index, bc.n_free());
-  out.C = rho * select(Cfull, row_index, nh, row_index, nh);
+  out.B = rho * submatrix(Bfull, row_index, nh, col_index, bc.n_free());
+  out.C = rho * submatrix(Cfull, row_index, nh, row_index, nh);
   return out;
 }
 
