@@ -75,14 +75,15 @@ int cmd_run(const RunOptions& opt) {
 
   const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
   State s = sim.initial;
-  const double E0 = p.mass->kinetic_energy(s.V) + p.potential_energy(s.U, s.t);
+  const double E0 = sim.scheme->energy(s).total();
   double max_drift = 0.0, max_violation = p.max_violation(s.U), qp_iters = 0.0, qp_seconds = 0.0, E_final = E0;
   int max_active = 0;
   Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
 
   auto record = [&](int step, const StepStats& st) {
-    const double Ek = p.mass->kinetic_energy(s.V), Ep = p.potential_energy(s.U, s.t);
-    E_final = Ek + Ep;
+    const Energy E = sim.scheme->energy(s);
+    const double Ek = E.kinetic, Ep = E.potential;
+    E_final = E.total();
     max_drift = std::max(max_drift, std::abs(E_final - E0) / std::abs(E0));
     csv << step << "," << s.t << "," << Ek << "," << Ep << "," << E_final << "," << st.active << "," << st.qp_iterations
         << "," << st.qp_seconds;

@@ -21,6 +21,10 @@ ImplicitStep::ImplicitStep(const ConstrainedProblem& p, StepSolver& solver, doub
   qp_.upper = p.upper;
 }
 
+Energy ImplicitStep::energy(const State& s) const {
+  return {p_.mass->kinetic_energy(s.V), p_.potential_energy(s.U, s.t)};
+}
+
 Eigen::VectorXd ImplicitStep::mass_times(const Eigen::VectorXd& x) const {
   if (M_) return *M_ * x;
   return p_.mass->momentum(p_.mass->velocity(x));

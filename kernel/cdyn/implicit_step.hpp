@@ -13,6 +13,10 @@
 namespace cdyn {
 
 class ImplicitStep : public TimeScheme {
+ public:
+  // J(Uⁿ, Vⁿ) = ½ Vᵀ C V + ½ UᵀAU − LᵀU of the full field.
+  Energy energy(const State& s) const override;
+
  protected:
   ImplicitStep(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m);
 

@@ -31,12 +31,22 @@ struct StepStats {
   double kkt_residual = 0.0;
 };
 
+// The discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU (seed, Theorem 2), split in its parts.
+struct Energy {
+  double kinetic = 0.0, potential = 0.0;
+  double total() const { return kinetic + potential; }
+};
+
 class TimeScheme {
  public:
   virtual ~TimeScheme() = default;
   virtual std::string name() const = 0;
   // Advances s from t to t + dt.
   virtual StepStats step(State& s) = 0;
+  // The energy of the state in the form the scheme's identity is written for
+  // (docs/schemes.md): J(Uⁿ, Vⁿ) for the one-step schemes; the three-level schemes
+  // evaluate the potential part between the last two displacements.
+  virtual Energy energy(const State& s) const = 0;
 };
 
 // name: backward_euler | midpoint | midpoint_end.  The problem and the solver must
