@@ -19,13 +19,15 @@ const std::set<std::string> kKnownKeys = {
     "name",           "description",
     "mesh.kind",      "mesh.n",         "mesh.length",     "mesh.file",
     "physics.model",  "physics.E",      "physics.rho",     "physics.tension", "physics.f",
+    "physics.m",      "physics.k",
     "dirichlet.parts", "dirichlet.value",
     "obstacle.enabled", "obstacle.where", "obstacle.g",
     "initial.u",      "initial.v",
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
+    "time.beta",      "time.gamma",     "time.restitution",
     "solver.name",    "solver.tol",     "solver.max_iterations",
-    "output.every",   "output.probes",
+    "output.every",   "output.probes",  "output.fields",   "output.plots",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 

@@ -7,6 +7,7 @@
 #include "cdyn/error.hpp"
 #include "cdyn/expression.hpp"
 #include "cdyn/gmsh_mesh.hpp"
+#include "cdyn/oscillator.hpp"
 #include "cdyn/scalar_wave.hpp"
 
 namespace cdyn::app {
@@ -68,40 +69,81 @@ Mesh make_mesh(const Scene& s) {
   const std::string kind = s.string("mesh.kind");
   if (kind == "interval") return interval_mesh(s.integer("mesh.n"), s.number("mesh.length", 1.0));
   if (kind == "unit_square") return unit_square_mesh(s.integer("mesh.n"));
-  if (kind == "gmsh") return read_mesh(s.string("mesh.file"));
+  if (kind == "gmsh") {
+    // A relative mesh.file is relative to the scene file's directory (as an #include
+    // is to its file), so a scene runs from anywhere; for the embedded scene, to the
+    // current directory.  (`--set mesh.file=` values arrive absolute: cmd_run.cpp.)
+    std::string file = s.string("mesh.file");
+    const auto slash = s.source().find_last_of('/');
+    if (!file.empty() && file.front() != '/' && slash != std::string::npos) file = s.source().substr(0, slash + 1) + file;
+    return read_mesh(file);
+  }
   throw InputError("mesh.kind: unknown kind '" + kind + "' (interval, unit_square, gmsh)");
 }
 
-Simulation make_simulation(const Scene& s) {
-  Simulation sim;
-  sim.scene_name = s.name();
-  sim.mesh = std::make_unique<Mesh>(make_mesh(s));
-  const Mesh& mesh = *sim.mesh;
+namespace {
 
-  // Physics: the scalar problems (membrane, bar).
-  sim.model = s.string("physics.model");
-  if (sim.model != "membrane" && sim.model != "bar")
-    throw InputError("physics.model: '" + sim.model + "' is not available yet (membrane, bar)");
-  if (sim.model == "bar" && mesh.dim != 1) throw InputError("physics.model: the bar needs a 1D mesh (mesh.kind = interval)");
+// The one-dof oscillator (oscillator.hpp): physics.m, physics.k, physics.f = F(t).
+ConstrainedProblem oscillator(const Mesh& mesh, const Scene& s) {
+  if (s.has("method.pair") || (s.has("method.mass") && s.string("method.mass") != "lumped"))
+    throw InputError("method: the oscillator has one dof and the mass m (no pair or mass model to choose)");
+  OscillatorData o;
+  o.m = s.number("physics.m", 1.0);
+  o.k = s.number("physics.k", 1.0);
+  const std::string F = s.string("physics.f", "0");
+  o.F = parse_expression(F, "physics.f");
+  o.load_is_constant = !depends_on_time(F);
+  o.obstacle = s.boolean("obstacle.enabled", true);
+  o.g = expression(s, "obstacle.g", "0")(0.0, 0.0, 0.0);
+  return build_oscillator(mesh, o);
+}
+
+// The membrane (unit square or gmsh) and the bar (interval).
+ScalarWaveData scalar_wave(const Mesh& mesh, const Scene& s, const std::string& model) {
+  if (model == "bar" && mesh.dim != 1) throw InputError("physics.model: the bar needs a 1D mesh (mesh.kind = interval)");
   ScalarWaveData d;
   const auto [W, velocity] = method(s, Element::P1);
   d.displacement = W;
   d.velocity = velocity;
-  sim.pair = s.has("method.mass") ? velocity : to_string(W) + "/" + velocity;
   d.rho = s.number("physics.rho", 1.0);
-  d.kappa = sim.model == "bar" ? s.number("physics.E", 1.0) : s.number("physics.tension", 1.0);
+  d.kappa = model == "bar" ? s.number("physics.E", 1.0) : s.number("physics.tension", 1.0);
   const std::string f = s.string("physics.f", "0");
   d.f = parse_expression(f, "physics.f");
   d.load_is_constant = !depends_on_time(f);
   d.dirichlet_parts = parts(mesh, s, "dirichlet.parts");
   d.dirichlet_value = expression(s, "dirichlet.value", "0");
-  d.obstacle = s.boolean("obstacle.enabled", true);
   const std::string where = s.string("obstacle.where", "vertices");
   d.obstacle_on_all_vertices = where == "vertices";
   if (!d.obstacle_on_all_vertices) d.obstacle_parts = parts(mesh, s, "obstacle.where");
+  d.obstacle = s.boolean("obstacle.enabled", true);
   d.obstacle_g = expression(s, "obstacle.g", "0");
-  sim.problem = build_scalar_wave(mesh, d);
-  sim.dirichlet_parts = d.dirichlet_parts;
+  return d;
+}
+
+}  // namespace
+
+Simulation make_simulation(const Scene& s) {
+  Simulation sim;
+  sim.scene_name = s.name();
+
+  // Physics: the scalar problems (oscillator, bar, membrane).
+  sim.model = s.string("physics.model");
+  if (sim.model != "membrane" && sim.model != "bar" && sim.model != "oscillator")
+    throw InputError("physics.model: '" + sim.model + "' is not available yet (oscillator, bar, membrane)");
+  if (sim.model == "oscillator") {
+    if (!s.keys("mesh").empty()) throw InputError("mesh: the oscillator has no mesh (remove the [mesh] table)");
+    sim.mesh = std::make_unique<Mesh>(oscillator_mesh());
+    sim.pair = "m (one dof)";
+    sim.problem = oscillator(*sim.mesh, s);
+    sim.dirichlet_parts = {sim.mesh->part_index("right")};
+  } else {
+    sim.mesh = std::make_unique<Mesh>(make_mesh(s));
+    ScalarWaveData d = scalar_wave(*sim.mesh, s, sim.model);
+    sim.pair = s.has("method.mass") ? d.velocity : to_string(d.displacement) + "/" + d.velocity;
+    sim.problem = build_scalar_wave(*sim.mesh, d);
+    sim.dirichlet_parts = d.dirichlet_parts;
+  }
+  const Mesh& mesh = *sim.mesh;
   for (int i : sim.problem.constrained)
     sim.constrained_vertices.push_back(sim.problem.bc->free_dofs()[i]);  // scalar P1-type space: dof = vertex
   ConstrainedProblem& p = sim.problem;
@@ -111,6 +153,7 @@ Simulation make_simulation(const Scene& s) {
   sim.T = s.number("time.T");
   if (!(sim.dt > 0.0) || !std::isfinite(sim.dt)) throw InputError("time.dt: must be positive");
   if (!(sim.T > 0.0) || !std::isfinite(sim.T)) throw InputError("time.T: must be positive");
+  if (sim.T < sim.dt) throw InputError("time.T: shorter than one step (T = " + std::to_string(sim.T) + " < dt = " + std::to_string(sim.dt) + ")");
   sim.n_steps = static_cast<int>(std::ceil(sim.T / sim.dt - 1e-9));
   sim.output_every = s.integer("output.every", 1);
   if (sim.output_every < 1) throw InputError("output.every: must be at least 1");
@@ -125,7 +168,11 @@ Simulation make_simulation(const Scene& s) {
   } catch (const InputError& e) {
     throw InputError("solver.name: " + std::string(e.what()));
   }
-  sim.scheme = make_time_scheme(sim.scheme_name, p, *sim.solver, sim.dt);
+  SchemeParameters parameters;
+  parameters.beta = s.number("time.beta", parameters.beta);
+  parameters.gamma = s.number("time.gamma", parameters.gamma);
+  parameters.restitution = s.number("time.restitution", parameters.restitution);
+  sim.scheme = make_time_scheme(sim.scheme_name, p, *sim.solver, sim.dt, parameters);
 
   // Initial state: U⁰ must lie in K̄^h; V⁰ from C V⁰ = B U̇⁰.
   const FESpace& Wh = *p.W;
@@ -136,17 +183,17 @@ Simulation make_simulation(const Scene& s) {
   sim.initial.V = initial_velocity(p, p.bc->restrict(Wh.interpolate(expression(s, "initial.v", "0"), 0.0)));
   sim.initial.reaction = Eigen::VectorXd::Zero(p.n_free());
 
-  // Probes.
-  for (const std::string& name : s.keys("output.probes")) {
-    const std::string key = "output.probes." + name;
-    const std::vector<double> c = s.numbers(key);
+  // Probes (the oscillator's one dof is probed as "mass" unless the scene names others).
+  auto add_probe = [&](const std::string& name, const std::vector<double>& c, const std::string& key) {
     if (static_cast<int>(c.size()) != mesh.dim) throw InputError(key + ": expected " + std::to_string(mesh.dim) + " coordinates");
     Probe pr{name, {c[0], mesh.dim == 2 ? c[1] : 0.0}, {}, -1};
     pr.where = locate(mesh, pr.at);
     if (pr.where.cell < 0) throw InputError(key + ": the point lies outside the mesh");
     pr.vertex = nearest_vertex(mesh, pr.at);
     sim.probes.push_back(pr);
-  }
+  };
+  for (const std::string& name : s.keys("output.probes")) add_probe(name, s.numbers("output.probes." + name), "output.probes." + name);
+  if (sim.model == "oscillator" && sim.probes.empty()) add_probe("mass", {0.0}, "output.probes");
   return sim;
 }
 

@@ -30,6 +30,11 @@ Eigen::VectorXd ImplicitStep::mass_times(const Eigen::VectorXd& x) const {
   return p_.mass->momentum(p_.mass->velocity(x));
 }
 
+void ImplicitStep::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+  qp_.lower = lower;
+  qp_.upper = upper;
+}
+
 Eigen::VectorXd ImplicitStep::solve(const Eigen::VectorXd& r, State& s, StepStats& stats) {
   qp_.r = r;
   last_ = solver_.solve(qp_, has_last_ ? &last_ : nullptr);

@@ -26,6 +26,12 @@ class ImplicitStep : public TimeScheme {
   // Solves the step QP with right-hand side r; fills s.reaction and the stats.
   Eigen::VectorXd solve(const Eigen::VectorXd& r, State& s, StepStats& stats);
 
+  // The bounds of the step QP (the problem's K̄^h unless a scheme moves them).
+  void set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
+
+  // The explicit M when the mass model has one (H^h = P0, classical models).
+  const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
+
   const ConstrainedProblem& p_;
   StepSolver& solver_;
   double dt_;
@@ -44,4 +50,9 @@ namespace cdyn {
 std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt);
 std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt);
 std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt);
+std::unique_ptr<TimeScheme> make_newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta,
+                                         double gamma);
+std::unique_ptr<TimeScheme> make_paoli_schatzman(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                 double restitution);
+std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt);
 }  // namespace cdyn

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cdyn/error.hpp"
+#include "cdyn/least_squares.hpp"
 #include "cdyn/mass_redistribution.hpp"
 
 namespace cdyn {
@@ -31,6 +32,12 @@ class ClassicalMassModel final : public MassModel {
   double kinetic_energy(const Eigen::VectorXd& V) const override {
     check(V);
     return 0.5 * V.dot(M_ * V);
+  }
+  // V = U̇, so A = Ü solves M Ü = F (least squares for the singular redistributed M:
+  // its massless contact dofs get a basic solution, which no energy or momentum sees).
+  Eigen::VectorXd acceleration(const Eigen::VectorXd& F) const override {
+    check(F);
+    return least_squares(M_, F);
   }
 
  private:

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cdyn/error.hpp"
+#include "cdyn/least_squares.hpp"
 
 namespace cdyn {
 
@@ -60,6 +61,16 @@ class MixedMassModel final : public MassModel {
   double kinetic_energy(const Eigen::VectorXd& V) const override {
     check_size(V, C_.rows(), "V");
     return 0.5 * V.dot(C_ * V);
+  }
+
+  // H^h = P0: a = M⁺F, A = C⁻¹ B a (Ker M = Ker B, so the part of a that the least
+  // squares solution leaves free does not reach A).  Continuous H^h: M is not formed;
+  // then A minimizes ‖Bᵀ A − F‖ directly (B is surjective for these pairs, so A is
+  // unique and is a rate: C⁻¹ B is onto H^h).
+  Eigen::VectorXd acceleration(const Eigen::VectorXd& F) const override {
+    check_size(F, B_.cols(), "the force");
+    if (M_) return velocity(least_squares(*M_, F));
+    return least_squares(SparseMatrix(B_.transpose()), F);
   }
 
  private:

@@ -52,6 +52,13 @@ class MassModel {
 
   // ½ Vᵀ C V.
   virtual double kinetic_energy(const Eigen::VectorXd& V) const = 0;
+
+  // The acceleration in H^h of a force F: A with Bᵀ A = F (the inertia force of seed
+  // eq. 16 is M Ü = Bᵀ A) that is the rate of a velocity, A = C⁻¹ B a for some a in
+  // W^h.  A least squares solution when F is not in the range of M (a singular M whose
+  // massless modes are not in equilibrium); M Ü = F exactly otherwise.  One sparse QR
+  // factorization per call: meant for starting a scheme, not for every step.
+  virtual Eigen::VectorXd acceleration(const Eigen::VectorXd& F) const = 0;
 };
 
 }  // namespace cdyn

@@ -49,10 +49,18 @@ class TimeScheme {
   virtual Energy energy(const State& s) const = 0;
 };
 
-// name: backward_euler | midpoint | midpoint_end.  The problem and the solver must
-// outlive the scheme.  Throws InputError for an unknown name or dt <= 0.
+// The parameters of the schemes that have some (docs/schemes.md).
+struct SchemeParameters {
+  double beta = 0.25, gamma = 0.5;  // newmark (the trapezoidal rule by default)
+  double restitution = 0.0;         // paoli_schatzman's e ∈ [0, 1]
+};
+
+// name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
+// energy_conserving.  The problem and the solver must outlive the scheme.  Throws
+// InputError for an unknown name, dt <= 0, parameters out of range, or a mass model
+// the scheme does not accept (paoli_schatzman needs an invertible M in W^h).
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
-                                             StepSolver& solver, double dt);
+                                             StepSolver& solver, double dt, const SchemeParameters& parameters = {});
 std::vector<std::string> time_scheme_names();
 
 // The initial velocity V⁰ in H^h from a displacement rate U̇⁰ on the free dofs:

@@ -1,0 +1,54 @@
+// scheme_fixtures.hpp — the problems the scheme tests integrate: the seed's membrane
+// on a coarse mesh for every pair and classical mass model, and its initial state.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "cdyn/scalar_wave.hpp"
+#include "cdyn/time_scheme.hpp"
+
+namespace cdyn::testing {
+
+struct Method {
+  Element W;
+  std::string velocity;
+};
+inline const Method kMethods[] = {{Element::P1, "P1"},       {Element::P1, "P0"},          {Element::P1Bubble, "P0"},
+                                  {Element::P1Bubble, "P1"}, {Element::P2, "P1"},          {Element::P1, "consistent"},
+                                  {Element::P1, "lumped"}};
+// (The redistributed mass needs a contact boundary, not a volume obstacle: it is
+// checked on the bar, whose contact is one end.)
+
+inline std::string label(const Method& m) { return to_string(m.W) + "/" + m.velocity; }
+
+// The seed's membrane with an initial velocity so that both energy parts move:
+// u0 = 0.02, v0 = −0.3 sin(πx) sin(πy), f = −0.6, u ≥ 0 at the vertices.
+inline ConstrainedProblem membrane(const Mesh& mesh, const Method& m, bool obstacle) {
+  ScalarWaveData d;
+  d.displacement = m.W;
+  d.velocity = m.velocity;
+  d.f = [](double, double, double) { return -0.6; };
+  d.dirichlet_parts = {0, 1, 2, 3};
+  d.dirichlet_value = [](double, double, double) { return 0.02; };
+  d.obstacle = obstacle;
+  d.obstacle_g = [](double, double, double) { return 0.0; };
+  return build_scalar_wave(mesh, d);
+}
+
+inline State initial_state(const ConstrainedProblem& p) {
+  State s;
+  s.U = p.bc->restrict(p.W->interpolate([](double, double, double) { return 0.02; }));
+  const Eigen::VectorXd v0 = p.bc->restrict(
+      p.W->interpolate([](double x, double y, double) { return -0.3 * std::sin(M_PI * x) * std::sin(M_PI * y); }));
+  s.V = initial_velocity(p, v0);
+  return s;
+}
+
+inline QPOptions tight() {
+  QPOptions o;
+  o.tol = 1e-13;
+  return o;
+}
+
+}  // namespace cdyn::testing
