@@ -13,6 +13,7 @@
 // only enforced through the velocity, so an O(dt·v) interpenetration remains.
 #include <limits>
 
+#include "cdyn/error.hpp"
 #include "cdyn/implicit_step.hpp"
 
 namespace cdyn {
@@ -74,6 +75,12 @@ class EnergyConserving final : public ImplicitStep {
 }  // namespace
 
 std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt) {
+  // A massless mode z ∈ Ker M obeys zᵀA (U^{n+1} + 2Uⁿ + U^{n−1})/4 = zᵀL: the double
+  // root −1 of x² + 2x + 1 lets it grow like (−1)ⁿ n (measured: P1+/P0 and P2/P1 on the
+  // membrane sink by 0.3 in 800 steps).  So M must be invertible.
+  if (p.mass->n_velocity() < p.n_free() || p.mass->name() == "redistributed")
+    throw InputError("time.scheme: energy_conserving needs an invertible mass matrix (its massless modes are unstable): "
+                     "use method.mass = consistent or lumped, or the pairs P1/P1, P1/P0 — not " + p.mass->name());
   return std::make_unique<EnergyConserving>(p, solver, dt);
 }
 
