@@ -105,6 +105,8 @@ void Scene::set(const std::string& assignment) {
   }
   t->insert_or_assign(key.substr(start), *parsed.get("v"));
   if (key == "name") name_ = value;
+  // method.pair and method.mass are alternatives: overriding one replaces the other.
+  if (key == "method.pair" || key == "method.mass") t->erase(key == "method.pair" ? "mass" : "pair");
 }
 
 const toml::node* Scene::find(const std::string& key) const {
