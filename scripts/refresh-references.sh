@@ -12,3 +12,11 @@ FF="env FF_LOADPATH=/usr/lib/freefem++ FreeFem++ -nw -v 0"
 # static membrane obstacle (FreeFEM + ff-Ipopt), read by tests/unit/test_qp_obstacle.cpp
 $FF reference_scripts/static_obstacle.edp -n 10 -out data/reference/static_obstacle_n10.csv
 $FF reference_scripts/static_obstacle.edp -n 20 -out data/reference/static_obstacle_n20.csv
+
+# dynamic membrane step by step (FreeFEM + ff-Ipopt), compared live by tests/reference
+for pair in P1 P1b; do
+  for scheme in backward_euler midpoint; do
+    $FF reference_scripts/dynamic_membrane.edp -pair $pair -scheme $scheme -n 10 -dt 0.001 -steps 300 \
+        -out data/reference/dynamic_membrane_${pair}_${scheme}.csv
+  done
+done

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -34,9 +35,12 @@ struct Reference {
   std::vector<double> x, y, u;
 };
 
+// The stored references, or, when CDYN_REFERENCE_DIR is set, the CSVs that the
+// `reference` label has just produced by running FreeFEM live (tests/reference).
 Reference read_reference(int n) {
-  const std::string path =
-      std::string(CDYN_SOURCE_DIR) + "/data/reference/static_obstacle_n" + std::to_string(n) + ".csv";
+  const char* live = std::getenv("CDYN_REFERENCE_DIR");
+  const std::string dir = live ? std::string(live) : std::string(CDYN_SOURCE_DIR) + "/data/reference";
+  const std::string path = dir + "/static_obstacle_n" + std::to_string(n) + ".csv";
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open " + path);
   Reference ref;
