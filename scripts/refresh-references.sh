@@ -20,3 +20,7 @@ for pair in P1 P1b; do
         -out data/reference/dynamic_membrane_${pair}_${scheme}.csv
   done
 done
+
+# basis-independent matrix invariants (FreeFEM), read by tests/unit/test_reference_matrices.cpp
+$FF reference_scripts/matrices.edp -n 4 -out data/reference/matrices_n4.csv
+$FF reference_scripts/matrices.edp -n 10 -out data/reference/matrices_n10.csv
