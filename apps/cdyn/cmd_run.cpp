@@ -1,11 +1,15 @@
 // cmd_run.cpp — `cdyn run`: integrate a scene in time and write its results
-// (DESIGN.md §5): history.csv (one row per step), summary.json, scene.toml.
+// (DESIGN.md §5, docs/outputs.md): history.csv (one row per step), summary.json,
+// scene.toml (the scene as run), fields.pvd + fields/*.vtu (output.fields) and
+// plots/*.png (output.plots).
 //
 // Every step records the discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU split into its
 // kinetic and potential parts, the active constraints, the QP iterations and time,
 // and the probes (u, v and the seed's multiplier λ ≤ 0 at named points).  A NaN or a
-// QP failure stops the run with the step number (exit status 3); the summary is
-// written last, so a directory without summary.json is an unfinished run.
+// QP failure stops the run with the step number (exit status 3), after closing the
+// field series so that the blow-up can be looked at; summary.json is written after
+// the time loop, so a directory without it is an unfinished run.  The plots come
+// last, made from the finished files by the embedded scripts/plot_run.py.
 #include <unistd.h>
 
 #include <chrono>
@@ -15,9 +19,13 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cdyn/error.hpp"
 #include "commands.hpp"
+#include "embedded_scripts.hpp"
+#include "fields_output.hpp"
+#include "python_script.hpp"
 #include "simulation.hpp"
 
 namespace cdyn::app {
@@ -29,7 +37,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The probe values of the current state: u (full field), v (displacement rate over
-// the last step) and λ (the seed's multiplier at the nearest constrained vertex).
+// the last step) and λ (the seed's multiplier at the vertex nearest to the probe).
 struct ProbeValues {
   double u, v, lambda;
 };
@@ -39,8 +47,7 @@ ProbeValues probe(const Simulation& sim, const Probe& pr, const Eigen::VectorXd&
   const FESpace& W = *sim.problem.W;
   ProbeValues out{W.value_in_cell(U_full, pr.where.cell, pr.where.xi),
                   W.value_in_cell(rate_full, pr.where.cell, pr.where.xi), 0.0};
-  const int i = sim.problem.bc->free_index(W.vertex_dof(pr.vertex));
-  if (i >= 0 && s.reaction.size()) out.lambda = 0.0 - s.reaction[i];  // G = −I: λ = −(SX − r) (0.0 − avoids printing −0)
+  out.lambda = vertex_multiplier(sim.problem, s.reaction, pr.vertex);
   return out;
 }
 
@@ -52,11 +59,56 @@ void progress(int step, int n, double t, double drift, int active, double elapse
   std::fflush(stderr);
 }
 
+// A path as a TOML basic string.
+std::string toml_string(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// The scene as run, to be written next to the results: a relative mesh.file is made
+// absolute (by the rule of make_mesh: relative to the scene file's directory, or to
+// the current directory for the embedded scene), so that `cdyn run DIR/scene.toml`
+// reruns it from anywhere.
+Scene scene_as_run(Scene scene, const std::string& scene_file) {
+  if (scene.string("mesh.kind", "") != "gmsh") return scene;  // else mesh.file is unused
+  std::filesystem::path file = scene.string("mesh.file");
+  if (file.is_relative() && !scene_file.empty()) file = std::filesystem::path(scene_file).parent_path() / file;
+  scene.set("mesh.file=" + toml_string(std::filesystem::absolute(file).lexically_normal().string()));
+  return scene;
+}
+
+// An earlier run's files in the same directory go first: a directory holds one run.
+void remove_previous_outputs(const std::filesystem::path& out) {
+  std::error_code ec;
+  std::filesystem::remove(out / "summary.json", ec);
+  remove_fields(out);
+  for (const char* png : {"energy.png", "probes.png", "contact.png"}) std::filesystem::remove(out / "plots" / png, ec);
+}
+
 }  // namespace
+
+std::vector<std::string> command_line_paths(std::vector<std::string> sets) {
+  const std::string key = "mesh.file=";
+  for (std::string& a : sets) {
+    if (a.rfind(key, 0) != 0) continue;
+    std::string value = a.substr(key.size());
+    if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'') && value.back() == value.front())
+      value = value.substr(1, value.size() - 2);
+    if (!value.empty() && std::filesystem::path(value).is_relative())
+      a = key + toml_string(std::filesystem::absolute(value).lexically_normal().string());
+  }
+  return sets;
+}
 
 int cmd_run(const RunOptions& opt) {
   Scene scene = Scene::load(opt.scene);
-  for (const auto& a : opt.sets) scene.set(a);
+  for (const auto& a : command_line_paths(opt.sets)) scene.set(a);
+  const bool write_fields = scene.boolean("output.fields", true);
+  const bool make_plots = scene.boolean("output.plots", true);
   Simulation sim = make_simulation(scene);
   const ConstrainedProblem& p = sim.problem;
 
@@ -64,8 +116,8 @@ int cmd_run(const RunOptions& opt) {
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) throw InputError(out.string() + ": cannot create the output directory (" + ec.message() + ")");
-  std::filesystem::remove(out / "summary.json", ec);
-  std::ofstream(out / "scene.toml") << scene.dump();
+  remove_previous_outputs(out);
+  std::ofstream(out / "scene.toml") << scene_as_run(scene, opt.scene).dump();
   std::ofstream csv(out / "history.csv");
   if (!csv) throw InputError((out / "history.csv").string() + ": cannot write");
   csv.precision(17);
@@ -94,19 +146,31 @@ int cmd_run(const RunOptions& opt) {
     }
     csv << "\n";
   };
-  record(0, StepStats{});
-
+  // The field series: step 0, every output.every steps and the last step.  Its cost
+  // is measured apart and left out of wall_s, which is the cost of the method.
+  std::optional<FieldsWriter> fields;
+  if (write_fields) fields.emplace(out, *sim.mesh, p);
+  double fields_seconds = 0.0;
+  auto write_fields_at = [&](int step) {
+    if (!fields || (step % sim.output_every != 0 && step != sim.n_steps)) return;
+    const auto tf = Clock::now();
+    fields->write(step, s.t, p.full(s.U), rate, s.reaction);
+    fields_seconds += seconds_since(tf);
+  };
   const auto t0 = Clock::now();
+  record(0, StepStats{});
+  write_fields_at(0);
+
   for (int n = 1; n <= sim.n_steps; ++n) {
     const Eigen::VectorXd U_old = s.U;
     StepStats st;
     try {
       st = sim.scheme->step(s);
+      if (!s.U.allFinite() || !s.V.allFinite()) throw NumericalError("the solution is not finite (NaN or Inf)");
     } catch (const NumericalError& e) {
+      if (fields) fields->finish();  // the series up to the failure, for a look at it
       throw NumericalError("step " + std::to_string(n) + " (t = " + std::to_string(s.t + sim.dt) + "): " + e.what());
     }
-    if (!s.U.allFinite() || !s.V.allFinite())
-      throw NumericalError("step " + std::to_string(n) + ": the solution is not finite (NaN or Inf)");
     rate.setZero();
     const Eigen::VectorXd du = (s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
@@ -115,12 +179,14 @@ int cmd_run(const RunOptions& opt) {
     max_active = std::max(max_active, st.active);
     max_violation = std::max(max_violation, p.max_violation(s.U));
     record(n, st);
+    write_fields_at(n);
     if (show_progress && (n % 10 == 0 || n == sim.n_steps))
       progress(n, sim.n_steps, s.t, max_drift, st.active, seconds_since(t0));
   }
-  const double wall = seconds_since(t0);
+  const double wall = seconds_since(t0) - fields_seconds;
   if (show_progress) std::fprintf(stderr, "\n");
   csv.close();
+  if (fields) fields->finish();
 
   nlohmann::ordered_json j;
   j["scene"] = sim.scene_name;
@@ -146,8 +212,12 @@ int cmd_run(const RunOptions& opt) {
   j["s_per_step"] = wall / sim.n_steps;
   j["qp_s_per_step"] = qp_seconds / sim.n_steps;
   j["qp_iters_mean"] = qp_iters / sim.n_steps;
+  j["fields_s"] = fields_seconds;
   j["wellposed"] = wellposedness_summary(sim);
   std::ofstream(out / "summary.json") << j.dump(2) << "\n";
+
+  std::string plot_note;
+  if (make_plots) plot_note = run_python_script(kPlotRunScript, {out.string()});
 
   if (!opt.quiet) {
     std::printf(
@@ -158,6 +228,7 @@ int cmd_run(const RunOptions& opt) {
         p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()), sim.n_steps, sim.dt, s.t, wall,
         wall / sim.n_steps, qp_iters / sim.n_steps, E0, E_final, max_drift, max_violation,
         wellposedness_line(j["wellposed"]).c_str(), out.string().c_str());
+    if (!plot_note.empty()) std::printf("  Note: no plots (%s).\n", plot_note.c_str());
   }
   return 0;
 }

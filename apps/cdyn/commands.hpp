@@ -24,6 +24,22 @@ struct RunOptions {
 };
 int cmd_run(const RunOptions& options);
 
+// --set values that name files (mesh.file) are relative to the current directory, as
+// one typing them expects, not to the scene file's directory as in the scene file:
+// makes them absolute.  Applied by every command that takes --set.
+std::vector<std::string> command_line_paths(std::vector<std::string> sets);
+
+// `cdyn study [SCENE.toml] --vary key=v1,v2,... [--vary ...] [--out DIR] [--set ...]`:
+// one run per combination of the varied values, then study.csv and the
+// work-precision plot (docs/outputs.md).
+struct StudyOptions {
+  std::string scene;
+  std::string out;                 // empty: out/<scene name>-study
+  std::vector<std::string> varies; // key=v1,v2,...
+  std::vector<std::string> sets;   // applied to every run, before the varied values
+};
+int cmd_study(const StudyOptions& options);
+
 // `cdyn wellposed [SCENE.toml] [--set key=value]... [--json]`: condition (12) for
 // every pair on the scene's mesh and constraints.
 struct WellposedOptions {

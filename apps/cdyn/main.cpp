@@ -28,6 +28,15 @@ int main(int argc, char** argv) {
   wellposed->add_option("--set", wp_options.sets, "override a scene key")->allow_extra_args(false);
   wellposed->add_flag("--json", wp_options.json, "print the table as JSON");
 
+  cdyn::app::StudyOptions study_options;
+  auto* study = app.add_subcommand("study", "Run every combination of --vary values; study.csv and a work-precision plot");
+  study->add_option("SCENE", study_options.scene, "a scene file (.toml); none: the default scene");
+  study->add_option("--vary", study_options.varies, "a key and its values, e.g. --vary time.dt=0.004,0.002,0.001")
+      ->required()
+      ->allow_extra_args(false);
+  study->add_option("--out", study_options.out, "output directory (default out/<scene name>-study)");
+  study->add_option("--set", study_options.sets, "override a scene key in every run")->allow_extra_args(false);
+
   std::string mesh_file;
   auto* mesh = app.add_subcommand("mesh", "Summarise a mesh (.geo or .msh) and its physical groups");
   mesh->add_option("FILE", mesh_file, "a gmsh .geo or .msh (2.2 or 4.1) file")->required();
@@ -48,7 +57,11 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) return cdyn::app::cmd_run(run_options);
-    if (*wellposed) return cdyn::app::cmd_wellposed(wp_options);
+    if (*study) return cdyn::app::cmd_study(study_options);
+    if (*wellposed) {
+      wp_options.sets = cdyn::app::command_line_paths(wp_options.sets);
+      return cdyn::app::cmd_wellposed(wp_options);
+    }
     if (*mesh) return cdyn::app::cmd_mesh(mesh_file);
   } catch (const cdyn::InputError& e) {
     std::cerr << "cdyn: error: " << e.what() << "\n";

@@ -3,41 +3,85 @@
 
 Usage: check_run.py CDYN WORKDIR
 
-Runs the default scene on a small mesh (the --set overrides are part of what is
+Runs the default scene as it is (every output file: history.csv, summary.json,
+scene.toml, fields.pvd + fields/*.vtu, plots/*.png when a python3 with matplotlib is
+there, else a note), then on a small mesh (the --set overrides are part of what is
 tested: the run must reflect them) and checks: history.csv has one row per step plus
 the initial state, E_total = E_kin + E_pot on every row, summary.json's fields equal
 what history.csv gives (E0, E_final, E_rel_drift, n_steps), n_dofs is that of P1+ on
-the overridden mesh, and backward Euler never increases the energy.  Only the
-standard library is used.
+the overridden mesh, the scene.toml written reruns the same run, output.fields and
+output.plots switch their outputs off, and backward Euler never increases the energy.
+Only the standard library is used (check_fields.py reads the VTU files).
 """
 import csv
+import glob
 import json
 import os
+import re
+import shutil
 import subprocess
 import sys
 
 cdyn, work = sys.argv[1], sys.argv[2]
 
 
-def run(out, *sets):
-    args = [cdyn, "run", "--quiet", "--out", out]
+def run(out, *sets, scene=None, quiet=True, env=None):
+    args = [cdyn, "run"] + ([scene] if scene else []) + ["--out", out] + (["--quiet"] if quiet else [])
     for s in sets:
         args += ["--set", s]
-    subprocess.run(args, check=True)
+    shutil.rmtree(out, ignore_errors=True)
+    p = subprocess.run(args, check=True, stdout=subprocess.PIPE, text=True, env=env)
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
-    return rows, summary
+    return rows, summary, p.stdout
+
+
+def have_matplotlib():
+    """Whether cdyn will find a python3 with matplotlib (python_script.cpp's search)."""
+    for python in ["python3", "/usr/bin/python3"]:
+        if shutil.which(python) and subprocess.run([python, "-c", "import matplotlib"],
+                                                   stderr=subprocess.DEVNULL).returncode == 0:
+            return True
+    return False
 
 
 def close(a, b, rel):
     return abs(a - b) <= rel * max(abs(a), abs(b), 1e-300)
 
 
+# The default scene as it is: the seed's membrane, n = 20, 800 steps, fields every 20.
+out = os.path.join(work, "run_default")
+rows, s, stdout = run(out, quiet=False)
+for f in ["history.csv", "summary.json", "scene.toml", "fields.pvd"]:
+    assert os.path.isfile(os.path.join(out, f)), f
+assert s["n_dofs"] == 21 ** 2 + 2 * 20 * 20 and s["n_steps"] == 800 == len(rows) - 1, (s["n_dofs"], s["n_steps"])
+vtus = sorted(glob.glob(os.path.join(out, "fields", "step_*.vtu")))
+assert len(vtus) == 800 // 20 + 1, len(vtus)
+with open(os.path.join(out, "fields.pvd")) as f:
+    pvd = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', f.read())
+assert [os.path.join(out, f) for _, f in pvd] == vtus, pvd[:3]
+times = {int(r["step"]): float(r["t"]) for r in rows}
+for t, f in pvd:  # each file at the time of its step in history.csv
+    assert float(t) == times[int(f[len("fields/step_"):-len(".vtu")])], (t, f)
+if have_matplotlib():
+    for png in ["energy.png", "probes.png", "contact.png"]:
+        assert os.path.getsize(os.path.join(out, "plots", png)) > 1000, png
+else:
+    assert "Note: no plots" in stdout, stdout
+print(stdout.strip().splitlines()[1])
+
+# No python3 at all: one note, no plots, and the run succeeds.
+out = os.path.join(work, "run_no_python")
+env = dict(os.environ, CDYN_PYTHON="/nonexistent/python3")
+rows, s, stdout = run(out, "mesh.n=4", "time.T=0.01", "output.fields=false", quiet=False, env=env)
+assert "Note: no plots (no python3 found)" in stdout, stdout
+assert not os.path.exists(os.path.join(out, "plots")) and not os.path.exists(os.path.join(out, "fields.pvd"))
+
 n = 6
 out = os.path.join(work, "run_midpoint")
-rows, s = run(out, f"mesh.n={n}", "time.T=0.05", "time.dt=0.001")
+rows, s, _ = run(out, f"mesh.n={n}", "time.T=0.05", "time.dt=0.001", "output.plots=false")
 assert len(rows) == s["n_steps"] + 1 == 51, (len(rows), s["n_steps"])
 assert s["n_dofs"] == (n + 1) ** 2 + 2 * n * n, s["n_dofs"]  # P1+ : vertices + one bubble per cell
 assert s["pair"] == "P1+/P0" and s["scheme"] == "midpoint" and s["solver"] == "pdas"
@@ -53,9 +97,15 @@ for key in ["scene", "pair", "scheme", "solver", "n_dofs", "n_steps", "dt", "h",
     assert key in s, key
 assert s["wellposed"]["satisfied"] is True and s["wellposed"]["beta"] > 0
 assert {"u@centre", "v@centre", "lambda@centre"} <= set(rows[0])
+assert list(rows[0])[:8] == "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s".split(","), list(rows[0])
+
+# The scene.toml written next to the results reruns the same run.
+rerun_rows, rerun, _ = run(os.path.join(work, "run_rerun"), scene=os.path.join(out, "scene.toml"))
+assert rerun["n_dofs"] == s["n_dofs"] and rerun["n_steps"] == s["n_steps"] and rerun["E_final"] == s["E_final"]
 
 out = os.path.join(work, "run_backward_euler")
-rows, s = run(out, f"mesh.n={n}", "time.T=0.1", "time.dt=0.002", "time.scheme=backward_euler")
+rows, s, _ = run(out, f"mesh.n={n}", "time.T=0.1", "time.dt=0.002", "time.scheme=backward_euler",
+                 "output.fields=false", "output.plots=false")
 assert s["scheme"] == "backward_euler" and s["n_steps"] == 50
 E = [float(r["E_total"]) for r in rows]
 assert all(b <= a + 1e-13 * abs(E[0]) for a, b in zip(E, E[1:])), "backward Euler increased the energy"

@@ -1,12 +1,17 @@
 # expect_error.cmake — runs `${CDYN} ${ARGS}` and checks the bad-input contract
 # (DESIGN.md §4): exit status ${STATUS} (default 2) and exactly one line on stderr,
-# matching ${MATCH}.
-#   cmake -DCDYN=... -DARGS="a;b" -DMATCH=regex [-DSTATUS=2] [-DWORKDIR=dir] -P expect_error.cmake
+# matching ${MATCH}.  With -DOUT=dir (a fresh directory the command was told to
+# write to), also that the failed command left there no summary.json (a finished
+# run) nor study.csv (a finished study): no output may look complete.
+#   cmake -DCDYN=... -DARGS="a;b" -DMATCH=regex [-DSTATUS=2] [-DWORKDIR=dir] [-DOUT=dir] -P expect_error.cmake
 if(NOT DEFINED STATUS)
   set(STATUS 2)
 endif()
 if(NOT DEFINED WORKDIR)
   set(WORKDIR ${CMAKE_CURRENT_BINARY_DIR})
+endif()
+if(DEFINED OUT)
+  file(REMOVE_RECURSE ${OUT})
 endif()
 execute_process(COMMAND ${CDYN} ${ARGS} WORKING_DIRECTORY ${WORKDIR}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -21,4 +26,9 @@ endif()
 if(NOT err MATCHES "${MATCH}")
   message(FATAL_ERROR "stderr does not match '${MATCH}':\n${err}")
 endif()
+foreach(marker summary.json study.csv)
+  if(DEFINED OUT AND EXISTS ${OUT}/${marker})
+    message(FATAL_ERROR "the failed command left ${OUT}/${marker}")
+  endif()
+endforeach()
 message(STATUS "ok: ${err}")

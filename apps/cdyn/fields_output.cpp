@@ -1,0 +1,167 @@
+// fields_output.cpp — VTK XML UnstructuredGrid files with appended raw data
+// (https://docs.vtk.org/en/latest/design_documents/VTKFileFormats.html), and their
+// .pvd collection.  See fields_output.hpp for what is written.
+#include "fields_output.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "cdyn/error.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+constexpr std::uint8_t kVtkLine = 3, kVtkTriangle = 5;
+
+const char* byte_order() { return std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian"; }
+
+// One appended block: its size in bytes (UInt64, header_type) then the bytes.
+template <class T>
+void append_block(std::string& blocks, const std::vector<T>& values) {
+  const std::uint64_t n = values.size() * sizeof(T);
+  blocks.append(reinterpret_cast<const char*>(&n), sizeof n);
+  blocks.append(reinterpret_cast<const char*>(values.data()), n);
+}
+
+std::uint64_t block_size(std::size_t n_values, std::size_t value_size) { return 8 + n_values * value_size; }
+
+// A double with all its digits (for the pvd's time values).
+std::string exact(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+}  // namespace
+
+double vertex_multiplier(const ConstrainedProblem& problem, const Eigen::VectorXd& reaction, int vertex, int k) {
+  if (reaction.size() == 0) return 0.0;
+  const FESpace& W = *problem.W;
+  bool constrained = false;
+  for (int c = 0; c < W.components(); ++c) {
+    const int i = problem.bc->free_index(W.vertex_dof(vertex, c));
+    constrained = constrained || (i >= 0 && (std::isfinite(problem.lower[i]) || std::isfinite(problem.upper[i])));
+  }
+  const int i = problem.bc->free_index(W.vertex_dof(vertex, k));
+  if (!constrained || i < 0) return 0.0;
+  return 0.0 - reaction[i];  // G = −I: λ = −reaction (0.0 − avoids printing −0)
+}
+
+void remove_fields(const std::filesystem::path& out) {
+  std::error_code ec;
+  std::filesystem::remove(out / "fields.pvd", ec);
+  if (!std::filesystem::is_directory(out / "fields", ec)) return;
+  std::vector<std::filesystem::path> old;
+  for (const auto& entry : std::filesystem::directory_iterator(out / "fields", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("step_", 0) == 0 && entry.path().extension() == ".vtu") old.push_back(entry.path());
+  }
+  for (const auto& path : old) std::filesystem::remove(path, ec);
+}
+
+FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, const ConstrainedProblem& problem)
+    : out_(out), mesh_(mesh), problem_(problem) {
+  std::error_code ec;
+  std::filesystem::create_directories(out_ / "fields", ec);
+  if (ec) throw InputError((out_ / "fields").string() + ": cannot create the directory (" + ec.message() + ")");
+
+  // The geometry is the same in every frame: encode it once.
+  const int nv = mesh.n_vertices(), nc = mesh.n_cells(), per_cell = mesh.vertices_per_cell();
+  std::vector<double> points(3 * static_cast<std::size_t>(nv), 0.0);  // z = 0
+  for (int v = 0; v < nv; ++v) {
+    points[3 * v] = mesh.vertices[v].x;
+    points[3 * v + 1] = mesh.vertices[v].y;
+  }
+  std::vector<std::int64_t> connectivity, offsets;
+  for (int c = 0; c < nc; ++c) {
+    for (int k = 0; k < per_cell; ++k) connectivity.push_back(mesh.cells[c][k]);
+    offsets.push_back(static_cast<std::int64_t>(c + 1) * per_cell);
+  }
+  const std::vector<std::uint8_t> types(nc, mesh.dim == 2 ? kVtkTriangle : kVtkLine);
+  append_block(geometry_blocks_, points);
+  append_block(geometry_blocks_, connectivity);
+  append_block(geometry_blocks_, offsets);
+  append_block(geometry_blocks_, types);
+}
+
+void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
+                         const Eigen::VectorXd& reaction) {
+  const FESpace& W = *problem_.W;
+  const int nv = mesh_.n_vertices(), n_comp = W.components();
+  const int width = n_comp == 1 ? 1 : 3;  // ParaView's vectors have 3 components
+
+  // Vertex values: scalar dof v of P1, P1+ and P2 is vertex v (fe_space.hpp).
+  std::vector<double> u(static_cast<std::size_t>(width) * nv, 0.0), v(u.size(), 0.0), lambda(u.size(), 0.0);
+  for (int vertex = 0; vertex < nv; ++vertex)
+    for (int k = 0; k < n_comp; ++k) {
+      const int dof = W.vertex_dof(vertex, k), at = width * vertex + k;
+      u[at] = U_full[dof];
+      v[at] = rate_full[dof];
+      lambda[at] = vertex_multiplier(problem_, reaction, vertex, k);
+    }
+
+  std::string blocks;
+  blocks.reserve(3 * block_size(u.size(), 8) + geometry_blocks_.size());
+  append_block(blocks, u);
+  append_block(blocks, v);
+  append_block(blocks, lambda);
+  const std::uint64_t field = block_size(u.size(), 8);
+  const std::uint64_t at_points = 3 * field;
+  const std::uint64_t at_connectivity = at_points + block_size(3 * static_cast<std::size_t>(nv), 8);
+  const std::uint64_t at_offsets = at_connectivity + block_size(static_cast<std::size_t>(mesh_.n_cells()) * mesh_.vertices_per_cell(), 8);
+  const std::uint64_t at_types = at_offsets + block_size(mesh_.n_cells(), 8);
+
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order()
+      << "\" header_type=\"UInt64\">\n"
+      << "  <UnstructuredGrid>\n"
+      << "    <Piece NumberOfPoints=\"" << nv << "\" NumberOfCells=\"" << mesh_.n_cells() << "\">\n"
+      << "      <PointData Scalars=\"u\">\n";
+  const char* names[] = {"u", "v", "lambda"};
+  for (int f = 0; f < 3; ++f)
+    xml << "        <DataArray type=\"Float64\" Name=\"" << names[f] << "\" NumberOfComponents=\"" << width
+        << "\" format=\"appended\" offset=\"" << f * field << "\"/>\n";
+  xml << "      </PointData>\n"
+      << "      <Points>\n"
+      << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\""
+      << at_points << "\"/>\n"
+      << "      </Points>\n"
+      << "      <Cells>\n"
+      << "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"" << at_connectivity << "\"/>\n"
+      << "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"" << at_offsets << "\"/>\n"
+      << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" << at_types << "\"/>\n"
+      << "      </Cells>\n"
+      << "    </Piece>\n"
+      << "  </UnstructuredGrid>\n"
+      << "  <AppendedData encoding=\"raw\">\n   _";
+
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%06d.vtu", step);
+  const std::string file = std::string("fields/") + name;
+  std::ofstream os(out_ / file, std::ios::binary);
+  os << xml.str();
+  os.write(blocks.data(), static_cast<std::streamsize>(blocks.size()));
+  os.write(geometry_blocks_.data(), static_cast<std::streamsize>(geometry_blocks_.size()));
+  os << "\n  </AppendedData>\n</VTKFile>\n";
+  if (!os) throw InputError((out_ / file).string() + ": cannot write");
+  frames_.push_back({t, file});
+}
+
+void FieldsWriter::finish() const {
+  std::ofstream pvd(out_ / "fields.pvd");
+  pvd << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << byte_order() << "\">\n"
+      << "  <Collection>\n";
+  for (const Frame& f : frames_)
+    pvd << "    <DataSet timestep=\"" << exact(f.t) << "\" group=\"\" part=\"0\" file=\"" << f.file << "\"/>\n";
+  pvd << "  </Collection>\n</VTKFile>\n";
+  if (!pvd) throw InputError((out_ / "fields.pvd").string() + ": cannot write");
+}
+
+}  // namespace cdyn::app

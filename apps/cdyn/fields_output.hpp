@@ -1,0 +1,71 @@
+// fields_output.hpp — the fields of a run for ParaView: fields.pvd + fields/*.vtu.
+//
+// Every output.every steps (and at step 0 and the last step) one VTK XML
+// UnstructuredGrid file holds the mesh (triangles in 2D, VTK_LINE cells in 1D, points
+// at z = 0) and three point fields at its vertices:
+//   u       the displacement, full field (Dirichlet values included);
+//   v       the displacement rate over the last step, (Uⁿ − Uⁿ⁻¹)/dt (0 at step 0);
+//   lambda  the seed's multiplier λ ≤ 0 at the constrained vertices (−reaction of
+//           the step's QP, G = −I), 0 elsewhere.
+// Vector-valued spaces give 3-component u, v, lambda (the missing ones 0; lambda
+// = λ_N n for contact against a rigid plane of normal n).
+// Only vertex values are written: a P1+ bubble vanishes at the vertices and a P2
+// edge dof is not a vertex value, so the files show the P1 interpolant of the field
+// (docs/outputs.md).  fields.pvd lists the files with their times, so ParaView
+// opens the whole series at once.
+//
+// Format: binary, appended raw data (UInt64 block headers, the machine's byte
+// order), the most compact form ParaView and meshio read without a decoder
+// step; the XML header stays readable text.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cdyn/constrained_problem.hpp"
+#include "cdyn/mesh.hpp"
+
+namespace cdyn::app {
+
+// The seed's multiplier at vertex v, component k: −reaction where the vertex carries
+// a constraint (the scalar problems' G = −I: λ itself), 0 at unconstrained and
+// Dirichlet vertices and before the first step (reaction empty).  At an inactive
+// constraint it is the QP's residual, zero up to round-off (~1e-14), so λ ≤ 0 holds
+// to that.  For a vector field with a rigid plane of normal n the components make
+// λ_N n (the reaction is in global components, elastic_contact.hpp).  The probes
+// use it too.
+double vertex_multiplier(const ConstrainedProblem& problem, const Eigen::VectorXd& reaction, int vertex, int k = 0);
+
+// Removes the fields of an earlier run in `out` (fields.pvd, fields/step_*.vtu), so
+// that a directory never mixes two runs' files.
+void remove_fields(const std::filesystem::path& out);
+
+class FieldsWriter {
+ public:
+  // Writes into out/fields/ (created) and out/fields.pvd.
+  FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, const ConstrainedProblem& problem);
+
+  // Writes fields/step_NNNNNN.vtu for the state at `step`: U_full and rate_full are
+  // coefficient vectors on all dofs of W^h, reaction the QP reaction on its free dofs
+  // (empty: none yet).
+  void write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
+             const Eigen::VectorXd& reaction);
+
+  // Writes fields.pvd, the time series of the files written so far.
+  void finish() const;
+
+ private:
+  struct Frame {
+    double t;
+    std::string file;  // relative to the output directory
+  };
+  std::filesystem::path out_;
+  const Mesh& mesh_;
+  const ConstrainedProblem& problem_;
+  std::string geometry_blocks_;  // points, connectivity, offsets, types: the same every frame
+  std::vector<Frame> frames_;
+};
+
+}  // namespace cdyn::app

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""plot_run.py — the plots of one `cdyn run`, from its history.csv and summary.json.
+
+Usage: python3 scripts/plot_run.py RUN_DIR
+
+Writes RUN_DIR/plots/:
+  energy.png   E_kin, E_pot and E_total = J against t (seed, Theorem 2), and below
+               the relative drift (J - J0)/|J0|, where conservation shows (or not);
+  probes.png   u@P and lambda@P against t for every probe P (when the scene has any);
+  contact.png  the number of active constraints per step and, at the probes, the
+               contact force -lambda@P (lambda <= 0 is the seed's multiplier).
+docs/outputs.md describes the columns.  `cdyn run` runs a copy of this file compiled
+into the binary (apps/CMakeLists.txt), so edits here take effect at the next build;
+running it by hand remakes the plots of an existing run.
+
+Exit status 3 when matplotlib cannot be imported (cdyn then tries another python3, or
+prints a note): plots are optional, never an error of the run.
+"""
+import csv
+import json
+import os
+import sys
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only, no display needed
+    import matplotlib.pyplot as plt
+except ImportError:
+    if sys.argv[0] != "-c":  # run by hand (cdyn runs it with -c and prints its own note)
+        print(f"{sys.argv[0]}: matplotlib is missing (Debian: python3-matplotlib)", file=sys.stderr)
+    sys.exit(3)
+
+
+def read_history(path):
+    """The columns of history.csv as lists of floats, by header name."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in (rows[0].keys() if rows else [])}
+
+
+def title(summary):
+    return "{scene}: {pair}, {scheme}, dt = {dt:g}, {n_dofs} dofs".format(**summary)
+
+
+def plot_energy(h, summary, path):
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6), gridspec_kw={"height_ratios": [2, 1]})
+    t = h["t"]
+    top.plot(t, h["E_kin"], label="E_kin = ½VᵀCV")
+    top.plot(t, h["E_pot"], label="E_pot = ½UᵀAU − LᵀU")
+    top.plot(t, h["E_total"], "k", label="E_total = J")
+    top.set_ylabel("energy")
+    top.legend()
+    top.set_title(title(summary))
+    E0 = h["E_total"][0]
+    scale = abs(E0) if E0 != 0 else 1.0
+    bottom.plot(t, [(e - E0) / scale for e in h["E_total"]], "k")
+    bottom.set_ylabel("(J − J0)/|J0|")
+    bottom.set_xlabel("t")
+    bottom.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def probe_names(h):
+    return [k[2:] for k in h if k.startswith("u@")]
+
+
+def plot_probes(h, summary, path):
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6))
+    for p in probe_names(h):
+        top.plot(h["t"], h["u@" + p], label="u@" + p)
+        bottom.plot(h["t"], h["lambda@" + p], label="λ@" + p)
+    top.set_ylabel("displacement u")
+    top.legend()
+    top.set_title(title(summary))
+    bottom.set_ylabel("multiplier λ ≤ 0")
+    bottom.set_xlabel("t")
+    bottom.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_contact(h, summary, path):
+    names = probe_names(h)
+    fig, axes = plt.subplots(2 if names else 1, 1, sharex=True, figsize=(7, 6 if names else 3.5), squeeze=False)
+    top = axes[0][0]
+    top.step(h["t"], h["active"], where="post", color="C3")
+    top.set_ylabel("active constraints")
+    top.set_title(title(summary))
+    if names:
+        bottom = axes[1][0]
+        for p in names:
+            bottom.plot(h["t"], [-l for l in h["lambda@" + p]], label="−λ@" + p)
+        bottom.set_ylabel("contact force at the probe")
+        bottom.legend()
+    axes[-1][0].set_xlabel("t")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main(run_dir):
+    h = read_history(os.path.join(run_dir, "history.csv"))
+    with open(os.path.join(run_dir, "summary.json")) as f:
+        summary = json.load(f)
+    out = os.path.join(run_dir, "plots")
+    os.makedirs(out, exist_ok=True)
+    plot_energy(h, summary, os.path.join(out, "energy.png"))
+    if probe_names(h):
+        plot_probes(h, summary, os.path.join(out, "probes.png"))
+    plot_contact(h, summary, os.path.join(out, "contact.png"))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
