@@ -5,6 +5,9 @@
 // weights with |det J|, and scatter the local matrix into triplets.
 #include "cdyn/assembly.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <map>
 #include <vector>
 
 #include "cdyn/cell_geometry.hpp"
@@ -146,6 +149,75 @@ Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, dou
 
 Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t) {
   return assemble_load(W, std::vector<Field>{f}, t);
+}
+
+namespace {
+
+// The cell owning each boundary facet, and the local indices of the facet's vertices in
+// it: facet vertices (a, b) are the cell's local vertices (ka, kb).
+struct FacetInCell {
+  int cell = -1, ka = -1, kb = -1;
+};
+
+std::vector<FacetInCell> locate_facets(const Mesh& mesh) {
+  const int nv = mesh.vertices_per_cell();
+  std::map<std::pair<int, int>, FacetInCell> owner;  // sorted vertex pair (1D: (v, v))
+  for (int c = 0; c < mesh.n_cells(); ++c)
+    for (int i = 0; i < nv; ++i)
+      for (int j = (mesh.dim == 1 ? i : i + 1); j < (mesh.dim == 1 ? i + 1 : nv); ++j) {
+        const int a = mesh.cells[c][i], b = mesh.cells[c][j];
+        owner[std::minmax(a, b)] = {c, a <= b ? i : j, a <= b ? j : i};
+      }
+  std::vector<FacetInCell> out;
+  for (const auto& f : mesh.boundary) {
+    const int a = f.vertices[0], b = mesh.dim == 1 ? a : f.vertices[1];
+    const auto it = owner.find(std::minmax(a, b));
+    if (it == owner.end()) throw InputError("assemble_boundary_load: a boundary facet is not a facet of any cell");
+    FacetInCell k = it->second;
+    if (a > b) std::swap(k.ka, k.kb);  // k.ka is now the local index of vertex a
+    out.push_back(k);
+  }
+  return out;
+}
+
+// Reference coordinates of the local vertices of the reference interval / triangle.
+std::array<double, 2> reference_vertex(int dim, int k) {
+  if (dim == 1) return {static_cast<double>(k), 0.0};
+  return {k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+}
+
+}  // namespace
+
+Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>& parts, const std::vector<Field>& g,
+                                       double t) {
+  if (static_cast<int>(g.size()) != W.components())
+    throw InputError("assemble_boundary_load: one field per component expected");
+  const Mesh& mesh = W.mesh();
+  const std::vector<FacetInCell> where = locate_facets(mesh);
+  // A point facet (1D) is "integrated" by one evaluation with weight 1.
+  const QuadratureRule edge = mesh.dim == 1 ? QuadratureRule{{{0.0, 0.0}}, {1.0}} : gauss_legendre(W.degree() + 2);
+  Eigen::VectorXd L = Eigen::VectorXd::Zero(W.n_dofs());
+  std::vector<double> phi(W.local_dofs());
+  for (std::size_t f = 0; f < mesh.boundary.size(); ++f) {
+    if (std::find(parts.begin(), parts.end(), mesh.boundary[f].part) == parts.end()) continue;
+    const FacetInCell& k = where[f];
+    const std::array<double, 2> xa = reference_vertex(mesh.dim, k.ka), xb = reference_vertex(mesh.dim, k.kb);
+    const Point& a = mesh.vertices[mesh.cells[k.cell][k.ka]];
+    const Point& b = mesh.vertices[mesh.cells[k.cell][k.kb]];
+    const double length = mesh.dim == 1 ? 1.0 : std::hypot(b.x - a.x, b.y - a.y);  // ds = |b − a| ds_ref
+    const auto d = W.cell_dofs(k.cell);
+    for (int p = 0; p < edge.size(); ++p) {
+      const double s = edge.points[p][0];  // position along the edge, a at s = 0
+      const std::array<double, 2> xi{(1 - s) * xa[0] + s * xb[0], (1 - s) * xa[1] + s * xb[1]};
+      shape_values(W.element(), W.dim(), xi, phi.data());
+      const double x = (1 - s) * a.x + s * b.x, y = (1 - s) * a.y + s * b.y;
+      for (int c = 0; c < W.components(); ++c) {
+        const double gw = g[c](x, y, t) * edge.weights[p] * length;
+        for (int i = 0; i < W.local_dofs(); ++i) L[W.dof(d[i], c)] += gw * phi[i];
+      }
+    }
+  }
+  return L;
 }
 
 }  // namespace cdyn

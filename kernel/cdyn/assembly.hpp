@@ -38,4 +38,13 @@ SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu);
 Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t = 0.0);
 Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t = 0.0);
 
+// Boundary load (the Neumann term of l, seed eq. 3): L_i = ∫_{Γ_N} g(x, y, t) · φ_i ds
+// over the boundary facets of the given parts (indices into mesh.part_names), one field
+// per component of W.  Each facet is integrated as an edge of its cell, with the
+// cell's basis (so every element is handled alike; bubbles vanish there); 1D facets
+// are points, where ∫ g φ_i ds is the value g φ_i.  Gauss–Legendre rule of degree
+// 2·deg(W) + 2 along the edge, as assemble_load.
+Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>& parts, const std::vector<Field>& g,
+                                       double t = 0.0);
+
 }  // namespace cdyn

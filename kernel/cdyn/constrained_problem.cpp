@@ -1,4 +1,5 @@
-// constrained_problem.cpp — load with lifting, full-field energy, violation.
+// constrained_problem.cpp — load with lifting, full-field energy, violation, and the
+// optional change of basis U_f = R U' (see constrained_problem.hpp).
 #include "cdyn/constrained_problem.hpp"
 
 #include <algorithm>
@@ -8,7 +9,7 @@ namespace cdyn {
 const Eigen::VectorXd& ConstrainedProblem::full_load(double t) const {
   if (cached_full_load_.size() == 0 || (!load_is_constant && t != cached_t_)) {
     cached_full_load_ = L_full(t);
-    cached_load_ = bc->restrict(Eigen::VectorXd(cached_full_load_ - A_full * UD));
+    cached_load_ = local(bc->restrict(Eigen::VectorXd(cached_full_load_ - A_full * UD)));
     cached_t_ = t;
   }
   return cached_full_load_;
@@ -17,6 +18,18 @@ const Eigen::VectorXd& ConstrainedProblem::full_load(double t) const {
 Eigen::VectorXd ConstrainedProblem::load(double t) const {
   full_load(t);
   return cached_load_;
+}
+
+Eigen::VectorXd ConstrainedProblem::full(const Eigen::VectorXd& Uf) const { return bc->extend(global(Uf), UD); }
+
+Eigen::VectorXd ConstrainedProblem::global(const Eigen::VectorXd& X) const {
+  if (!R) return X;
+  return *R * X;
+}
+
+Eigen::VectorXd ConstrainedProblem::local(const Eigen::VectorXd& X) const {
+  if (!R) return X;
+  return R->transpose() * X;
 }
 
 double ConstrainedProblem::potential_energy(const Eigen::VectorXd& Uf, double t) const {
