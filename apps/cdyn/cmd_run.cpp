@@ -24,6 +24,7 @@
 #include "cdyn/error.hpp"
 #include "commands.hpp"
 #include "embedded_scripts.hpp"
+#include "exact_solution.hpp"
 #include "fields_output.hpp"
 #include "python_script.hpp"
 #include "simulation.hpp"
@@ -110,6 +111,7 @@ int cmd_run(const RunOptions& opt) {
   const bool write_fields = scene.boolean("output.fields", true);
   const bool make_plots = scene.boolean("output.plots", true);
   Simulation sim = make_simulation(scene);
+  const auto u_exact = exact_displacement(scene, sim);
   const ConstrainedProblem& p = sim.problem;
 
   const std::filesystem::path out = opt.out.empty() ? std::filesystem::path("out") / sim.scene_name : std::filesystem::path(opt.out);
@@ -213,6 +215,7 @@ int cmd_run(const RunOptions& opt) {
   j["qp_s_per_step"] = qp_seconds / sim.n_steps;
   j["qp_iters_mean"] = qp_iters / sim.n_steps;
   j["fields_s"] = fields_seconds;
+  if (u_exact) j["error_exact"] = l2_error_at(sim, *u_exact, s);  // ‖u_h(T) − u(T)‖_L2
   j["wellposed"] = wellposedness_summary(sim);
   std::ofstream(out / "summary.json") << j.dump(2) << "\n";
 

@@ -27,6 +27,7 @@ const std::set<std::string> kKnownKeys = {
     "time.scheme",    "time.dt",        "time.T",
     "time.beta",      "time.gamma",     "time.restitution",
     "solver.name",    "solver.tol",     "solver.max_iterations",
+    "exact.solution",
     "output.every",   "output.probes",  "output.fields",   "output.plots",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
