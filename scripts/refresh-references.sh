@@ -24,3 +24,7 @@ done
 # basis-independent matrix invariants (FreeFEM), read by tests/unit/test_reference_matrices.cpp
 $FF reference_scripts/matrices.edp -n 4 -out data/reference/matrices_n4.csv
 $FF reference_scripts/matrices.edp -n 10 -out data/reference/matrices_n10.csv
+
+# the same invariants by GetFEM (python3-getfem)
+/usr/bin/python3 reference_scripts/getfem_matrices.py -n 4 -out data/reference/getfem_matrices_n4.csv
+/usr/bin/python3 reference_scripts/getfem_matrices.py -n 10 -out data/reference/getfem_matrices_n10.csv

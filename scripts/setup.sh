@@ -21,7 +21,7 @@ packages=(
   nlohmann-json3-dev                       # summary.json
   libgtest-dev libgmock-dev googletest     # unit tests
   libbenchmark-dev                         # bench/
-  python3 python3-matplotlib python3-meshio python3-numpy  # plots, VTU check
+  python3 python3-matplotlib python3-meshio python3-numpy python3-getfem  # plots, VTU check, GetFEM reference
   freefem++ libfreefem++                   # independent reference numbers
 )
 

@@ -1,4 +1,4 @@
-// test_reference_matrices.cpp — cdyn's A and M = Bᵀ C⁻¹ B against FreeFEM's, through
+// test_reference_matrices.cpp — cdyn's A and M = Bᵀ C⁻¹ B against FreeFEM's and GetFEM's, through
 // invariants that do not depend on the basis (reference_scripts/matrices.edp): FreeFEM's
 // P1b is cdyn's P1+ in a nodal basis, so entries differ while
 //   1ᵀM1 (no Dirichlet condition; the measure of Ω),
@@ -26,10 +26,10 @@ struct Invariants {
   double mass = 0, trace1 = 0, trace2 = 0;
 };
 
-std::map<std::string, Invariants> read_freefem(int n) {
+std::map<std::string, Invariants> read_reference(const std::string& program, int n) {
   const char* live = std::getenv("CDYN_REFERENCE_DIR");
   const std::string dir = live ? std::string(live) : std::string(CDYN_SOURCE_DIR) + "/data/reference";
-  const std::string path = dir + "/matrices_n" + std::to_string(n) + ".csv";
+  const std::string path = dir + "/" + program + "_n" + std::to_string(n) + ".csv";
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open " + path);
   std::map<std::string, Invariants> out;
@@ -80,16 +80,18 @@ Invariants cdyn_invariants(const Mesh& mesh, Element W, const std::string& H) {
 
 }  // namespace
 
-TEST(ReferenceMatrices, InvariantsAgreeWithFreeFEM) {
+// program: "matrices" (FreeFEM, reference_scripts/matrices.edp) or "getfem_matrices"
+// (GetFEM, reference_scripts/getfem_matrices.py, whose P1+ is FEM_PK_WITH_CUBIC_BUBBLE).
+void check_against(const std::string& program) {
   for (int n : {4, 10}) {
-    const auto ff = read_freefem(n);
+    const auto ff = read_reference(program, n);
     const Mesh mesh = unit_square_mesh(n);
     const std::tuple<std::string, Element, std::string> pairs[] = {
         {"P1/P1", Element::P1, "P1"}, {"P1b/P0", Element::P1Bubble, "P0"}, {"P2/P1", Element::P2, "P1"}};
     for (const auto& [name, W, H] : pairs) {
       ASSERT_TRUE(ff.count(name)) << name;
       const Invariants r = ff.at(name), c = cdyn_invariants(mesh, W, H);
-      std::printf("n = %d %s: 1'M1 %.3e, tr(A^-1 M) %.3e, tr((A^-1 M)^2) %.3e relative difference\n", n, name.c_str(),
+      std::printf("%s n = %d %s: 1'M1 %.3e, tr(A^-1 M) %.3e, tr((A^-1 M)^2) %.3e relative difference\n", program.c_str(), n, name.c_str(),
                   std::abs(c.mass - r.mass) / r.mass, std::abs(c.trace1 - r.trace1) / r.trace1,
                   std::abs(c.trace2 - r.trace2) / r.trace2);
       EXPECT_NEAR(c.mass, r.mass, 1e-12 * r.mass) << name << " n = " << n;
@@ -98,3 +100,6 @@ TEST(ReferenceMatrices, InvariantsAgreeWithFreeFEM) {
     }
   }
 }
+
+TEST(ReferenceMatrices, InvariantsAgreeWithFreeFEM) { check_against("matrices"); }
+TEST(ReferenceMatrices, InvariantsAgreeWithGetFEM) { check_against("getfem_matrices"); }
