@@ -29,11 +29,10 @@ class PaoliSchatzman final : public ImplicitStep {
 
   StepStats step(State& s) override {
     const double c = 1.0 / dt_;
-    // The fictitious U⁻¹ = U⁰ − dt U̇⁰ + ½ dt² M⁻¹(L⁰ − A U⁰) (second-order Taylor;
-    // V = U̇ for the classical models this scheme accepts).
-    if (U_prev_.size() == 0)
-      U_prev_ = s.U - dt_ * s.V + 0.5 * dt_ * dt_ * p_.mass->acceleration(p_.load(s.t) - p_.A * s.U);
-    const Eigen::VectorXd F = p_.load(s.t) - p_.A * s.U;
+    const Eigen::VectorXd F = p_.load(s.t) - p_.A * s.U;  // Lⁿ − A Uⁿ
+    // First step: the fictitious U⁻¹ = U⁰ − dt U̇⁰ + ½ dt² M⁻¹(L⁰ − A U⁰) (second-order
+    // Taylor; V = U̇ for the classical models this scheme accepts).
+    if (U_prev_.size() == 0) U_prev_ = s.U - dt_ * s.V + 0.5 * dt_ * dt_ * p_.mass->acceleration(F);
     const Eigen::VectorXd r = (c * c * mass_times(2.0 * s.U - (1.0 - e_) * U_prev_) + F) / (1.0 + e_);
     StepStats stats;
     const Eigen::VectorXd X = diagonal_.size() ? clamp(r, s, stats) : solve(r, s, stats);

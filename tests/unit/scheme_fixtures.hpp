@@ -2,6 +2,7 @@
 // on a coarse mesh for every pair and classical mass model, and its initial state.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -43,6 +44,17 @@ inline State initial_state(const ConstrainedProblem& p) {
       p.W->interpolate([](double x, double y, double) { return -0.3 * std::sin(M_PI * x) * std::sin(M_PI * y); }));
   s.V = initial_velocity(p, v0);
   return s;
+}
+
+// max |J − J_ref| / scale over the next `steps` steps, J the scheme's own energy
+// (TimeScheme::energy: the form its conservation identity is written for).
+inline double max_energy_drift(TimeScheme& scheme, State& s, int steps, double J_ref, double scale) {
+  double drift = 0.0;
+  for (int n = 0; n < steps; ++n) {
+    scheme.step(s);
+    drift = std::max(drift, std::abs(scheme.energy(s).total() - J_ref) / scale);
+  }
+  return drift;
 }
 
 inline QPOptions tight() {

@@ -70,11 +70,7 @@ TEST(Newmark, TrapezoidalRuleConservesEnergyWithoutContact) {
     const double J0 = scheme->energy(s).total();
     scheme->step(s);
     const double J1 = scheme->energy(s).total();
-    double drift = 0.0;
-    for (int n = 1; n < 1000; ++n) {
-      scheme->step(s);
-      drift = std::max(drift, std::abs(scheme->energy(s).total() - J1) / std::abs(J0));
-    }
+    const double drift = max_energy_drift(*scheme, s, 999, J1, std::abs(J0));
     EXPECT_LE(drift, 1e-11) << label(m);
     std::printf("newmark (1/4, 1/2), no contact, %s: first step |J1 - J0|/J0 = %.2e, then max drift over 1000 steps = %.2e\n",
                 label(m).c_str(), std::abs(J1 - J0) / std::abs(J0), drift);
@@ -161,11 +157,7 @@ TEST(PaoliSchatzman, CentralDifferenceEnergyConservedWithoutContact) {
     State s = initial_state(p);
     scheme->step(s);
     const double E1 = scheme->energy(s).total();
-    double drift = 0.0;
-    for (int n = 1; n < 1000; ++n) {
-      scheme->step(s);
-      drift = std::max(drift, std::abs(scheme->energy(s).total() - E1) / std::abs(E1));
-    }
+    const double drift = max_energy_drift(*scheme, s, 999, E1, std::abs(E1));
     std::printf("paoli_schatzman, no contact, %s: max |E - E1|/E1 over 1000 steps = %.2e\n", mass, drift);
     EXPECT_LE(drift, 1e-11) << mass;
   }
