@@ -28,19 +28,22 @@ def load(folder, name):
     return cols, summary
 
 
-def energy_and_centre(folder, runs, title, out):
-    fig, ax = plt.subplots(1, 3, figsize=(15, 4))
+def relative_energy(h, s):
+    return [x / s["E0"] for x in h["E_total"]]
+
+
+def panels(folder, runs, columns, title, out):
+    """One figure: a panel per column (ylabel, values(history, summary), log scale?),
+    a curve per run (folder name, legend label)."""
+    fig, ax = plt.subplots(1, len(columns), figsize=(5 * len(columns) + 2, 4))
     for name, label in runs:
         h, s = load(folder, name)
-        e = [x / s["E0"] for x in h["E_total"]]
-        ax[0].plot(h["t"], e, label=label)
-        ax[1].plot(h["t"], h["u@centre"], label=label)
-        ax[2].plot(h["t"], h["lambda@centre"], label=label)
-    ax[0].set_ylabel("J(t) / J(0)")
-    ax[0].set_yscale("log")
-    ax[1].set_ylabel("u at the centre")
-    ax[2].set_ylabel("λ at the centre (seed's sign, ≤ 0)")
-    for a in ax:
+        for a, (_, values, _) in zip(ax, columns):
+            a.plot(h["t"], values(h, s), label=label)
+    for a, (ylabel, _, log) in zip(ax, columns):
+        a.set_ylabel(ylabel)
+        if log:
+            a.set_yscale("log")
         a.set_xlabel("t")
         a.grid(True, alpha=0.3)
     ax[0].legend(fontsize=8)
@@ -50,23 +53,10 @@ def energy_and_centre(folder, runs, title, out):
     plt.close(fig)
 
 
-def oscillator(folder, runs, out):
-    fig, ax = plt.subplots(1, 2, figsize=(12, 4))
-    for name, label in runs:
-        h, s = load(folder, name)
-        ax[0].plot(h["t"], h["u@mass"], label=label)
-        ax[1].plot(h["t"], [x / s["E0"] for x in h["E_total"]], label=label)
-    ax[0].set_ylabel("u(t)")
-    ax[1].set_ylabel("J(t) / J(0)")
-    ax[1].set_yscale("log")
-    for a in ax:
-        a.set_xlabel("t")
-        a.grid(True, alpha=0.3)
-    ax[0].legend(fontsize=8)
-    fig.suptitle("The one-dof oscillator: u = a|cos t| after the impact, a chosen by the scheme")
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
-    plt.close(fig)
+MEMBRANE = [("J(t) / J(0)", relative_energy, True),
+            ("u at the centre", lambda h, s: h["u@centre"], False),
+            ("λ at the centre (seed's sign, ≤ 0)", lambda h, s: h["lambda@centre"], False)]
+OSCILLATOR = [("u(t)", lambda h, s: h["u@mass"], False), ("J(t) / J(0)", relative_energy, True)]
 
 
 def table(folder):
@@ -85,22 +75,21 @@ def main():
     folder, img = sys.argv[1], sys.argv[2]
     os.makedirs(img, exist_ok=True)
     pairs = ["P1b_P0", "P1_P0", "P1_P1", "P1b_P1", "P2_P1"]
-    energy_and_centre(folder, [(f"membrane_midpoint_{p}", p.replace("b", "+").replace("_", "/")) for p in pairs],
-                      "Membrane, h = 0.1, dt = 0.001, midpoint (constraint on the half step)",
-                      os.path.join(img, "experiments_midpoint_pairs.png"))
-    energy_and_centre(folder, [("membrane_backward_euler_P1b_P0", "P1+/P0"), ("membrane_backward_euler_P1_P0", "P1/P0")],
-                      "Membrane, h = 0.1, dt = 0.001, backward Euler",
-                      os.path.join(img, "experiments_backward_euler.png"))
-    energy_and_centre(folder, [("membrane_midpoint_P1b_P0", "P1+/P0, h = 0.1"),
-                               ("membrane_midpoint_P1b_P0_h005", "P1+/P0, h = 0.05"),
-                               ("membrane_energy_conserving_consistent", "consistent, energy_conserving"),
-                               ("membrane_paoli_schatzman_lumped", "lumped, paoli_schatzman e = 0 (dt = 0.0005)")],
-                      "Membrane: the flagship pair against the classical schemes",
-                      os.path.join(img, "experiments_classical.png"))
-    oscillator(folder, [(f"oscillator_{s}", s) for s in
-                        ["midpoint", "midpoint_end", "backward_euler", "newmark", "energy_conserving"]] +
-               [(f"oscillator_paoli_schatzman_e{e}", f"paoli_schatzman e = {e}") for e in ["0", "0.5", "1"]],
-               os.path.join(img, "experiments_oscillator.png"))
+    panels(folder, [(f"membrane_midpoint_{p}", p.replace("b", "+").replace("_", "/")) for p in pairs], MEMBRANE,
+           "Membrane, h = 0.1, dt = 0.001, midpoint (constraint on the half step)",
+           os.path.join(img, "experiments_midpoint_pairs.png"))
+    panels(folder, [("membrane_backward_euler_P1b_P0", "P1+/P0"), ("membrane_backward_euler_P1_P0", "P1/P0")],
+           MEMBRANE, "Membrane, h = 0.1, dt = 0.001, backward Euler", os.path.join(img, "experiments_backward_euler.png"))
+    panels(folder, [("membrane_midpoint_P1b_P0", "P1+/P0, h = 0.1"),
+                    ("membrane_midpoint_P1b_P0_h005", "P1+/P0, h = 0.05"),
+                    ("membrane_energy_conserving_consistent", "consistent, energy_conserving"),
+                    ("membrane_paoli_schatzman_lumped", "lumped, paoli_schatzman e = 0 (dt = 0.0005)")], MEMBRANE,
+           "Membrane: the flagship pair against the classical schemes", os.path.join(img, "experiments_classical.png"))
+    panels(folder, [(f"oscillator_{s}", s) for s in
+                    ["midpoint", "midpoint_end", "backward_euler", "newmark", "energy_conserving"]] +
+           [(f"oscillator_paoli_schatzman_e{e}", f"paoli_schatzman e = {e}") for e in ["0", "0.5", "1"]], OSCILLATOR,
+           "The one-dof oscillator: u = a|cos t| after the impact, a chosen by the scheme",
+           os.path.join(img, "experiments_oscillator.png"))
     table(folder)
 
 
