@@ -25,7 +25,7 @@
 #include "commands.hpp"
 #include "embedded_scripts.hpp"
 #include "exact_solution.hpp"
-#include "fields_output.hpp"
+#include "cdyn/fields_output.hpp"
 #include "python_script.hpp"
 #include "simulation.hpp"
 

@@ -27,7 +27,7 @@
 #include "cdyn/constrained_problem.hpp"
 #include "cdyn/mesh.hpp"
 
-namespace cdyn::app {
+namespace cdyn {
 
 // The seed's multiplier at vertex v, component k: −reaction where the vertex carries
 // a constraint (the scalar problems' G = −I: λ itself), 0 at unconstrained and
@@ -68,4 +68,4 @@ class FieldsWriter {
   std::vector<Frame> frames_;
 };
 
-}  // namespace cdyn::app
+}  // namespace cdyn

@@ -1,7 +1,7 @@
 // fields_output.cpp — VTK XML UnstructuredGrid files with appended raw data
 // (https://docs.vtk.org/en/latest/design_documents/VTKFileFormats.html), and their
 // .pvd collection.  See fields_output.hpp for what is written.
-#include "fields_output.hpp"
+#include "cdyn/fields_output.hpp"
 
 #include <bit>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 #include "cdyn/error.hpp"
 
-namespace cdyn::app {
+namespace cdyn {
 
 namespace {
 
@@ -164,4 +164,4 @@ void FieldsWriter::finish() const {
   if (!pvd) throw InputError((out_ / "fields.pvd").string() + ": cannot write");
 }
 
-}  // namespace cdyn::app
+}  // namespace cdyn
