@@ -3,11 +3,20 @@
 // Backward Euler and the two midpoint variants all solve, per step, a QP with
 //     S = a A + k M,   k = m / dt²,
 // (a, m) = (1, 1), (1, 4) and (½, 2) respectively, and differ only in r and in the
-// update.  This base class builds S once (explicitly when M is sparse, in saddle form
-// otherwise), keeps the step solver's warm start, and provides M·x for the right-hand
+// update.  This base class builds S once (explicitly when M is sparse — H^h = P0, the
+// classical models, and H^h = W^h where B = C gives M = C — in saddle form otherwise), keeps the step solver's warm start, and provides M·x for the right-hand
 // sides.
+//
+// Static condensation (condensation.hpp).  With an explicit S, the unbounded unknowns
+// whose block of S is diagonal and whose elimination makes no fill — the bubbles of
+// P1+/P0 — are eliminated once, when S is built: the solver sees the QP on the kept
+// unknowns, S_c = S_vv − S_vb S_bb⁻¹ S_bv, r_c = r_v − S_vb S_bb⁻¹ r_b, and each step ends
+// with the back-substitution X_b = S_bb⁻¹ (r_b − S_bv X_v).  The same QP, a third of the
+// unknowns for P1+/P0; the stats (iterations, KKT residual) are those of the condensed
+// QP.  SchemeParameters::condense = false solves the full QP instead.
 #pragma once
 
+#include "cdyn/condensation.hpp"
 #include "cdyn/time_scheme.hpp"
 
 namespace cdyn {
@@ -18,7 +27,7 @@ class ImplicitStep : public TimeScheme {
   Energy energy(const State& s) const override;
 
  protected:
-  ImplicitStep(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m);
+  ImplicitStep(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m, bool condense = true);
 
   // M x = Bᵀ C⁻¹ B x (sparse product when M is explicit).
   Eigen::VectorXd mass_times(const Eigen::VectorXd& x) const;
@@ -26,10 +35,11 @@ class ImplicitStep : public TimeScheme {
   // Solves the step QP with right-hand side r; fills s.reaction and the stats.
   Eigen::VectorXd solve(const Eigen::VectorXd& r, State& s, StepStats& stats);
 
-  // The bounds of the step QP (the problem's K̄^h unless a scheme moves them).
+  // The bounds of the step QP (the problem's K̄^h unless a scheme moves them).  A finite
+  // bound on a condensed unknown ends the condensation for the rest of the run.
   void set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
 
-  // The explicit M when the mass model has one (H^h = P0, classical models).
+  // The explicit M when the mass model has one (H^h = P0, classical models), or C when B = C.
   const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
 
   const ConstrainedProblem& p_;
@@ -38,6 +48,8 @@ class ImplicitStep : public TimeScheme {
 
  private:
   std::optional<SparseMatrix> M_;
+  std::optional<DiagonalCondensation> condensation_;
+  SparseMatrix S_;   // the full S when condensed (qp_.S is S_c then)
   BoundQP qp_;
   QPResult last_;
   bool has_last_ = false;
@@ -47,12 +59,17 @@ class ImplicitStep : public TimeScheme {
 
 namespace cdyn {
 // The schemes built on ImplicitStep (one file each).
-std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt);
-std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt);
-std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt);
+// condense: see ImplicitStep (static condensation of the bubbles).
+std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                bool condense = true);
+std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                          bool condense = true);
+std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                              bool condense = true);
 std::unique_ptr<TimeScheme> make_newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta,
-                                         double gamma);
+                                         double gamma, bool condense = true);
 std::unique_ptr<TimeScheme> make_paoli_schatzman(const ConstrainedProblem& p, StepSolver& solver, double dt,
                                                  double restitution);
-std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt);
+std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                   bool condense = true);
 }  // namespace cdyn

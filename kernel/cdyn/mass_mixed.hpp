@@ -8,7 +8,8 @@
 //    is the cell–cell coupling of W^h) and matrix() returns it;
 //  - H^h continuous (P1, ...): C⁻¹ is dense, matrix() is empty, S = A + k M is given
 //    by its saddle form {A, B, C, k}; velocity() solves with a Cholesky factor of C
-//    (CHOLMOD, analysed and factorized once).
+//    (CHOLMOD, analysed and factorized once).  For H^h = W^h (P1/P1) B = C, so
+//    velocity() is the identity and M = C (implicit_step.cpp then builds S explicitly).
 #pragma once
 
 #include <memory>

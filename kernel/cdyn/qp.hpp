@@ -69,6 +69,15 @@ struct QPOptions {
   // Cholesky factor by row additions/deletions instead of refactorizing (0: always
   // refactor; −1: max(300, n/100), the break-even measured in docs/performance.md)
   int pdas_update_limit = -1;
+  // pdas, explicit S: solve a system whose active set differs from the factorized one by
+  // Jacobi-preconditioned conjugate gradients on S̃ (at most this many iterations; 0: never)
+  // before touching the factor.  Pays when S̃ is well conditioned — the step matrix of
+  // P1+/P0 with the bubbles condensed (condition O(1), ≈ 45 iterations to 1e-14 at any
+  // n, docs/performance.md) — and gives up at the cap otherwise (then never again for
+  // this S).  The factor is brought to the current active set by `pdas_cg_resync`
+  // CG iterations in total since it was last (re)made.
+  int pdas_cg_iterations = 80;
+  int pdas_cg_resync = 600;
   double pgs_omega = 1.0;      // pgs: over-relaxation factor, 0 < ω < 2
   int pgs_check_every = 10;    // pgs: sweeps between two evaluations of the KKT residual
   bool ipopt_crossover = true;  // ipopt: finish by PDAS steps from Ipopt's active set if above tol

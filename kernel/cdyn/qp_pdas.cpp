@@ -59,6 +59,12 @@ struct PDASSolver::Impl {
   SparseCholesky chol;
   std::vector<char> factor_active;    // the active set chol currently factorizes
   int updates_since_factorization = 0;
+  // CG on S̃ for an active set other than the factor's (see QPOptions::pdas_cg_iterations)
+  bool cg_mode = false;               // solve_tilde uses CG with cg_active
+  bool cg_failed = false;             // CG did not converge once for this S: not tried again
+  std::vector<char> cg_active;
+  int cg_since_sync = 0;              // CG iterations since the factor was last (re)made
+  Eigen::VectorXd S_diagonal;
 
   // saddle form
   bool saddle = false;
@@ -95,6 +101,9 @@ struct PDASSolver::Impl {
                              std::to_string(minor) + ")");
       factor_active.assign(n, 0);
       updates_since_factorization = 0;
+      cg_mode = cg_failed = false;
+      cg_since_sync = 0;
+      S_diagonal = S.diagonal();
       return;
     }
     const SaddleForm& f = *qp.saddle;
@@ -139,23 +148,13 @@ struct PDASSolver::Impl {
                            std::to_string(minor) + ")");
     factor_active = active;
     updates_since_factorization = 0;
+    cg_mode = false;
+    cg_since_sync = 0;
   }
 
-  // Makes the factorization that of S̃ for this active set.
-  void set_active(const std::vector<char>& active, bool fresh = false) {
-    if (saddle) {
-      if (lu_factorized && active == lu_active && !fresh) return;
-      eliminate(K, active, K_tilde);
-      lu.factorize(K_tilde);
-      ++counters.factorizations;
-      if (lu.info() != Eigen::Success)
-        throw NumericalError("pdas: UMFPACK found the saddle matrix singular (is C positive definite and "
-                             "A + c B^T C^-1 B positive definite?)");
-      lu_factorized = true;
-      lu_active = active;
-      return;
-    }
-    if (fresh || !chol.factorized()) return refactorize(active);
+  // Brings the factor to `active` (row updates or a refactorization), leaving CG mode.
+  void sync_factor(const std::vector<char>& active) {
+    cg_mode = false;
     std::vector<int> to_delete, to_add;
     for (int i = 0; i < n; ++i)
       if (active[i] != factor_active[i]) (active[i] ? to_delete : to_add).push_back(i);
@@ -176,11 +175,89 @@ struct PDASSolver::Impl {
     }
     counters.row_updates += changes;
     updates_since_factorization += changes;
+    cg_since_sync = 0;
+  }
+
+  // y ↦ S̃ y for the active set `a`: identity rows/columns on a, S_II elsewhere.
+  Eigen::VectorXd apply_tilde(const std::vector<char>& a, const Eigen::VectorXd& y) const {
+    Eigen::VectorXd z = y;
+    for (int i = 0; i < n; ++i)
+      if (a[i]) z[i] = 0.0;
+    Eigen::VectorXd w = S * z;
+    for (int i = 0; i < n; ++i)
+      if (a[i]) w[i] = y[i];
+    return w;
+  }
+
+  // Jacobi-preconditioned CG on S̃ y = b for cg_active (Hestenes–Stiefel with z = D̃⁻¹ r).
+  // Returns false if ‖b − S̃y‖₂ ≤ tol ‖b‖₂ is not reached within the cap.
+  bool cg_solve(const Eigen::VectorXd& b, Eigen::VectorXd& y) {
+    const double tol = std::max(1e-14, 1e-2 * opt.tol);
+    Eigen::VectorXd Dinv(n);
+    for (int i = 0; i < n; ++i) Dinv[i] = cg_active[i] ? 1.0 : 1.0 / S_diagonal[i];
+    y = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i)
+      if (cg_active[i]) y[i] = b[i];  // exact on the identity rows from the start
+    Eigen::VectorXd r = b - apply_tilde(cg_active, y);
+    const double bnorm = b.norm();
+    if (bnorm == 0.0 || r.norm() <= tol * bnorm) return true;
+    Eigen::VectorXd z = Dinv.cwiseProduct(r), p = z;
+    double rz = r.dot(z);
+    for (int k = 1; k <= opt.pdas_cg_iterations; ++k) {
+      const Eigen::VectorXd q = apply_tilde(cg_active, p);
+      const double alpha = rz / p.dot(q);
+      y += alpha * p;
+      r -= alpha * q;
+      ++counters.cg_iterations;
+      ++cg_since_sync;
+      if (r.norm() <= tol * bnorm) return true;
+      z = Dinv.cwiseProduct(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return false;
+  }
+
+  // Makes the factorization that of S̃ for this active set.
+  void set_active(const std::vector<char>& active, bool fresh = false) {
+    if (saddle) {
+      if (lu_factorized && active == lu_active && !fresh) return;
+      eliminate(K, active, K_tilde);
+      lu.factorize(K_tilde);
+      ++counters.factorizations;
+      if (lu.info() != Eigen::Success)
+        throw NumericalError("pdas: UMFPACK found the saddle matrix singular (is C positive definite and "
+                             "A + c B^T C^-1 B positive definite?)");
+      lu_factorized = true;
+      lu_active = active;
+      return;
+    }
+    if (fresh || !chol.factorized()) return refactorize(active);
+    if (active == factor_active) {
+      cg_mode = false;
+      return;
+    }
+    if (opt.pdas_cg_iterations > 0 && !cg_failed && cg_since_sync < opt.pdas_cg_resync) {
+      cg_mode = true;  // the factor stays as it is; solve_tilde runs CG
+      cg_active = active;
+      return;
+    }
+    sync_factor(active);
   }
 
   // Solves S̃ y = top (explicit S), or K̃ [y; z] = [top; bottom] (saddle form).
   Eigen::VectorXd solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd* bottom = nullptr) {
     ++counters.solves;
+    if (!saddle && cg_mode) {
+      Eigen::VectorXd y;
+      if (cg_solve(top, y)) {
+        ++counters.cg_solves;
+        return y;
+      }
+      cg_failed = true;  // S̃ not well conditioned enough: the factor from now on
+      sync_factor(cg_active);
+    }
     if (!saddle) return chol.solve(top);
     const int m = static_cast<int>(K.rows()) - n;
     Eigen::VectorXd b(n + m);
@@ -322,8 +399,8 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
         result.X += s.solve_tilde(top, s.saddle ? &zero : nullptr);
         finish_result(qp, s.form, opt.tol, result);
       }
-      if (!result.converged && !refined_fresh && (s.saddle || s.updates_since_factorization > 0)) {
-        refined_fresh = true;  // row updates may have lost accuracy: refactorize and solve again
+      if (!result.converged && !refined_fresh && (s.saddle || s.cg_mode || s.updates_since_factorization > 0)) {
+        refined_fresh = true;  // row updates (or CG) may have lost accuracy: refactorize, solve again
         s.set_active(active, true);
         continue;
       }

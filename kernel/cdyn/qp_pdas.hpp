@@ -21,6 +21,11 @@
 //     set pays one forward/back solve per step); a change of at most
 //     QPOptions::pdas_update_limit unknowns (default max(300, n/100)) is applied to the
 //     factor by cholmod_rowdel / cholmod_rowadd instead of refactorizing;
+//     before any of that, a system whose active set differs from the factorized one
+//     is first tried by Jacobi-preconditioned CG on S̃ (QPOptions::pdas_cg_iterations):
+//     for a well-conditioned S (the condensed P1+/P0 step matrix) it costs about one
+//     and a half forward/back solves, against a factorization (≈ 30 solves) or
+//     hundreds of row updates (≈ 0.1 solve each) when the contact zone jumps;
 //   - saddle form: the same elimination in K = [[A, c Bᵀ], [B, −C]] (X rows only), LU
 //     by UMFPACK, symbolic analysis kept while K's pattern is unchanged; no updates.
 // A new explicit S is factorized once whole first: that checks it is positive definite
@@ -55,6 +60,8 @@ class PDASSolver : public StepSolver {
     int row_updates = 0;     // cholmod_rowadd / cholmod_rowdel calls
     int solves = 0;          // forward/back solves
     int damped_iterations = 0;  // projected Newton iterations after a detected cycle
+    int cg_solves = 0;       // systems solved by preconditioned CG instead of the factor
+    int cg_iterations = 0;   // their CG iterations (one product with S each)
   };
   const Counters& counters() const;
 

@@ -13,7 +13,8 @@ namespace {
 
 class BackwardEuler final : public ImplicitStep {
  public:
-  BackwardEuler(const ConstrainedProblem& p, StepSolver& solver, double dt) : ImplicitStep(p, solver, dt, 1.0, 1.0) {}
+  BackwardEuler(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense)
+      : ImplicitStep(p, solver, dt, 1.0, 1.0, condense) {}
   std::string name() const override { return "backward_euler"; }
 
   StepStats step(State& s) override {
@@ -30,8 +31,9 @@ class BackwardEuler final : public ImplicitStep {
 
 }  // namespace
 
-std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt) {
-  return std::make_unique<BackwardEuler>(p, solver, dt);
+std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                bool condense) {
+  return std::make_unique<BackwardEuler>(p, solver, dt, condense);
 }
 
 }  // namespace cdyn

@@ -22,8 +22,8 @@ namespace {
 
 class EnergyConserving final : public ImplicitStep {
  public:
-  EnergyConserving(const ConstrainedProblem& p, StepSolver& solver, double dt)
-      : ImplicitStep(p, solver, dt, 0.25, 1.0) {}
+  EnergyConserving(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense)
+      : ImplicitStep(p, solver, dt, 0.25, 1.0, condense) {}
   std::string name() const override { return "energy_conserving"; }
 
   StepStats step(State& s) override {
@@ -74,14 +74,15 @@ class EnergyConserving final : public ImplicitStep {
 
 }  // namespace
 
-std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt) {
+std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                   bool condense) {
   // A massless mode z ∈ Ker M obeys zᵀA (U^{n+1} + 2Uⁿ + U^{n−1})/4 = zᵀL: the double
   // root −1 of x² + 2x + 1 lets it grow like (−1)ⁿ n (measured: P1+/P0 and P2/P1 on the
   // membrane sink by 0.3 in 800 steps).  So M must be invertible.
   if (p.mass->n_velocity() < p.n_free() || p.mass->name() == "redistributed")
     throw InputError("time.scheme: energy_conserving needs an invertible mass matrix (its massless modes are unstable): "
                      "use method.mass = consistent or lumped, or the pairs P1/P1, P1/P0 — not " + p.mass->name());
-  return std::make_unique<EnergyConserving>(p, solver, dt);
+  return std::make_unique<EnergyConserving>(p, solver, dt, condense);
 }
 
 }  // namespace cdyn

@@ -18,8 +18,8 @@ namespace {
 
 class Midpoint final : public ImplicitStep {
  public:
-  Midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool constraint_at_end)
-      : ImplicitStep(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0),
+  Midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool constraint_at_end, bool condense)
+      : ImplicitStep(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, condense),
         at_end_(constraint_at_end) {}
   std::string name() const override { return at_end_ ? "midpoint_end" : "midpoint"; }
 
@@ -46,12 +46,13 @@ class Midpoint final : public ImplicitStep {
 
 }  // namespace
 
-std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt) {
-  return std::make_unique<Midpoint>(p, solver, dt, false);
+std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense) {
+  return std::make_unique<Midpoint>(p, solver, dt, false, condense);
 }
 
-std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt) {
-  return std::make_unique<Midpoint>(p, solver, dt, true);
+std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                              bool condense) {
+  return std::make_unique<Midpoint>(p, solver, dt, true, condense);
 }
 
 }  // namespace cdyn

@@ -20,8 +20,8 @@ namespace {
 
 class Newmark final : public ImplicitStep {
  public:
-  Newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta, double gamma)
-      : ImplicitStep(p, solver, dt, 1.0, 1.0 / beta), beta_(beta), gamma_(gamma) {}
+  Newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta, double gamma, bool condense)
+      : ImplicitStep(p, solver, dt, 1.0, 1.0 / beta, condense), beta_(beta), gamma_(gamma) {}
   std::string name() const override { return "newmark"; }
 
   StepStats step(State& s) override {
@@ -49,10 +49,10 @@ class Newmark final : public ImplicitStep {
 }  // namespace
 
 std::unique_ptr<TimeScheme> make_newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta,
-                                         double gamma) {
+                                         double gamma, bool condense) {
   if (!(beta > 0.0 && beta <= 0.5)) throw InputError("time.beta: Newmark's β must lie in (0, ½] (got " + std::to_string(beta) + ")");
   if (!(gamma >= 0.5 && gamma <= 1.0)) throw InputError("time.gamma: Newmark's γ must lie in [½, 1] (got " + std::to_string(gamma) + ")");
-  return std::make_unique<Newmark>(p, solver, dt, beta, gamma);
+  return std::make_unique<Newmark>(p, solver, dt, beta, gamma, condense);
 }
 
 }  // namespace cdyn

@@ -12,12 +12,13 @@ std::vector<std::string> time_scheme_names() {
 
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
                                              StepSolver& solver, double dt, const SchemeParameters& parameters) {
-  if (name == "backward_euler") return make_backward_euler(problem, solver, dt);
-  if (name == "midpoint") return make_midpoint(problem, solver, dt);
-  if (name == "midpoint_end") return make_midpoint_end(problem, solver, dt);
-  if (name == "newmark") return make_newmark(problem, solver, dt, parameters.beta, parameters.gamma);
+  const bool c = parameters.condense;
+  if (name == "backward_euler") return make_backward_euler(problem, solver, dt, c);
+  if (name == "midpoint") return make_midpoint(problem, solver, dt, c);
+  if (name == "midpoint_end") return make_midpoint_end(problem, solver, dt, c);
+  if (name == "newmark") return make_newmark(problem, solver, dt, parameters.beta, parameters.gamma, c);
   if (name == "paoli_schatzman") return make_paoli_schatzman(problem, solver, dt, parameters.restitution);
-  if (name == "energy_conserving") return make_energy_conserving(problem, solver, dt);
+  if (name == "energy_conserving") return make_energy_conserving(problem, solver, dt, c);
   std::string known;
   for (const auto& n : time_scheme_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("time.scheme: unknown scheme '" + name + "' (available: " + known + ")");

@@ -53,6 +53,7 @@ class TimeScheme {
 struct SchemeParameters {
   double beta = 0.25, gamma = 0.5;  // newmark (the trapezoidal rule by default)
   double restitution = 0.0;         // paoli_schatzman's e ∈ [0, 1]
+  bool condense = true;             // the implicit schemes: eliminate the bubbles (implicit_step.hpp)
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |

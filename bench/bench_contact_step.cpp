@@ -1,0 +1,177 @@
+// bench_contact_step.cpp — the cost of contact in a time step (issue 9, first target):
+// the seed's membrane (P1+/P0, midpoint with the constraint on the half step,
+// dt = 0.001, f = −0.6, u = 0.02 on the boundary and at t = 0, u ≥ 0 at the vertices:
+// data/scenes/membrane.toml) at n = 160, over the 100 steps 211–310, which contain the
+// impact (free fall 0.02 − 0.3 t² reaches the obstacle at t ≈ 0.258; the active set
+// grows to ≈ 7 900 vertices, then chatters by hundreds of vertices per step).
+//
+//   window/contact/condense:c/cg:k   pdas steps on the constrained problem
+//   window/linear/condense:c/cg:k    the same scheme with obstacle.enabled = false: the
+//                                   same S, no bounds, so every step is one forward/back
+//                                   solve with the kept factor (plus the right-hand side
+//                                   and the update, as in the contact step)
+// condense = 1: the bubbles eliminated (implicit_step.hpp, condensation.hpp), 0: the full
+// 76 481-unknown QP; cg = QPOptions::pdas_cg_iterations (0: active-set changes only by
+// CHOLMOD row updates or refactorization, qp_pdas.hpp).  Each iteration builds a fresh scheme and solver, runs the 210 steps
+// before the window untimed, and times the window (manual time: seconds per step).
+// Counters per step: qp_ms (the solver's share), iters (pdas linear solves), factor
+// (numeric factorizations), rowupd (CHOLMOD row updates), cg (CG solves), cg_it/cg (CG
+// iterations per CG solve), max_active; unknowns counts the free dofs before condensation.
+//
+// After the table it prints the ratios contact/linear (target ≤ 1.5, issue 9).
+// Run (Release build):
+//   build-perf/bench/bench_contact_step --benchmark_counters_tabular=true
+// CDYN_BENCH_N=80 runs a smaller mesh (the window is the same: the impact time does not
+// depend on the mesh).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "cdyn/qp_pdas.hpp"
+#include "cdyn/scalar_wave.hpp"
+#include "cdyn/time_scheme.hpp"
+
+namespace {
+
+using namespace cdyn;
+
+constexpr int kBefore = 210, kWindow = 100;
+constexpr double kDt = 1e-3;
+
+int mesh_n() {
+  const char* s = std::getenv("CDYN_BENCH_N");
+  return s ? std::atoi(s) : 160;
+}
+
+// The membrane of data/scenes/membrane.toml, with or without its obstacle.
+struct Membrane {
+  Mesh mesh;
+  ConstrainedProblem p;
+  Membrane(int n, bool obstacle) : mesh(unit_square_mesh(n)) {
+    ScalarWaveData d;
+    d.displacement = Element::P1Bubble;
+    d.velocity = "P0";
+    d.f = [](double, double, double) { return -0.6; };
+    d.dirichlet_parts = {mesh.part_index("bottom"), mesh.part_index("right"), mesh.part_index("top"),
+                         mesh.part_index("left")};
+    d.dirichlet_value = [](double, double, double) { return 0.02; };
+    d.obstacle = obstacle;
+    d.obstacle_g = [](double, double, double) { return 0.0; };
+    p = build_scalar_wave(mesh, d);
+  }
+  State initial() const {
+    State s;
+    s.U = p.unknowns(p.W->interpolate([](double, double, double) { return 0.02; }));
+    s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
+    return s;
+  }
+};
+
+const Membrane& membrane(int n, bool obstacle) {
+  static std::map<std::pair<int, bool>, std::unique_ptr<Membrane>> cache;
+  auto& m = cache[{n, obstacle}];
+  if (!m) m = std::make_unique<Membrane>(n, obstacle);
+  return *m;
+}
+
+std::map<std::string, std::pair<double, double>> g_window;  // name → (seconds, steps) over the repetitions
+
+void window(benchmark::State& state, bool obstacle, bool condense, int cg_iterations) {
+  const int n = static_cast<int>(state.range(0));
+  const Membrane& m = membrane(n, obstacle);
+  QPOptions opt;
+  opt.tol = 1e-12;  // the scene's solver.tol
+  opt.pdas_cg_iterations = cg_iterations;
+  double qp = 0, total = 0, iters = 0, factor = 0, rowupd = 0, cg = 0, cgit = 0;
+  int max_active = 0, runs = 0;
+  for (auto _ : state) {
+    PDASSolver solver(opt);
+    SchemeParameters par;
+    par.condense = condense;
+    auto scheme = make_time_scheme("midpoint", m.p, solver, kDt, par);
+    State s = m.initial();
+    for (int k = 0; k < kBefore; ++k) scheme->step(s);
+    const PDASSolver::Counters c0 = solver.counters();
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < kWindow; ++k) {
+      const StepStats st = scheme->step(s);
+      qp += st.qp_seconds;
+      iters += st.qp_iterations;
+      max_active = std::max(max_active, st.active);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.SetIterationTime(seconds / kWindow);
+    total += seconds;
+    factor += solver.counters().factorizations - c0.factorizations;
+    rowupd += solver.counters().row_updates - c0.row_updates;
+    cg += solver.counters().cg_solves - c0.cg_solves;
+    cgit += solver.counters().cg_iterations - c0.cg_iterations;
+    ++runs;
+  }
+  const double steps = static_cast<double>(runs) * kWindow;
+  state.counters["unknowns"] = static_cast<double>(m.p.n_free());
+  state.counters["qp_ms"] = 1e3 * qp / steps;
+  state.counters["iters"] = iters / steps;
+  state.counters["factor"] = factor / steps;
+  state.counters["rowupd"] = rowupd / steps;
+  state.counters["max_active"] = max_active;
+  state.counters["cg"] = cg / steps;
+  state.counters["cg_it/cg"] = cg > 0 ? cgit / cg : 0.0;
+  auto& acc = g_window[std::string(obstacle ? "contact" : "linear") + (condense ? "/condensed" : "/full") +
+                       (obstacle && cg_iterations == 0 ? "/no-cg" : "")];
+  acc.first += total;
+  acc.second += steps;
+}
+
+void register_all() {
+  const int n = mesh_n();
+  const int cg_default = QPOptions{}.pdas_cg_iterations;
+  struct Case {
+    bool obstacle, condense;
+    int cg;
+  };
+  for (const Case c : {Case{false, true, cg_default}, Case{true, true, cg_default}, Case{true, true, 0},
+                       Case{false, false, cg_default}, Case{true, false, cg_default}}) {
+    const std::string name = "window/" + std::string(c.obstacle ? "contact" : "linear") + "/condense:" +
+                             (c.condense ? "1" : "0") + "/cg:" + std::to_string(c.cg);
+    benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { window(s, c.obstacle, c.condense, c.cg); })
+        ->Arg(n)
+        ->ArgName("n")
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  auto at = [](const std::string& k) { return g_window.count(k) ? g_window[k].first / g_window[k].second : 0.0; };
+  std::printf("\nmean step over the window and the repetitions (ms): ");
+  for (const auto& [k, v] : g_window) std::printf("%s %.3f  ", k.c_str(), 1e3 * v.first / v.second);
+  std::printf("\n");
+  if (at("linear/condensed") > 0 && at("contact/condensed") > 0)
+    std::printf("contact overhead, condensed: pdas step / linear step = %.2f (target <= 1.5)\n",
+                at("contact/condensed") / at("linear/condensed"));
+  if (at("linear/condensed") > 0 && at("contact/condensed/no-cg") > 0)
+    std::printf("contact overhead, condensed, factor updates only (pdas_cg_iterations = 0): %.2f\n",
+                at("contact/condensed/no-cg") / at("linear/condensed"));
+  if (at("linear/full") > 0 && at("contact/full") > 0)
+    std::printf("contact overhead, full QP:   pdas step / linear step = %.2f\n", at("contact/full") / at("linear/full"));
+  if (at("linear/full") > 0 && at("linear/condensed") > 0)
+    std::printf("condensation speed-up: linear %.2fx, contact %.2fx\n", at("linear/full") / at("linear/condensed"),
+                at("contact/full") > 0 ? at("contact/full") / at("contact/condensed") : 0.0);
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,102 @@
+#!/usr/bin/python3
+"""bench_peer.py — cdyn against the peer a user would pick instead (issue 9, second target).
+
+The seed's dynamic membrane (data/scenes/membrane.toml: f = −0.6, u = 0.02 on the
+boundary and at t = 0, u ≥ 0 at the vertices, dt = 0.001) with P1/P1 and backward Euler,
+on FreeFEM's square(n, n), integrated
+  - by FreeFEM + ff-Ipopt, one Ipopt solve per step (reference_scripts/bench_peer_membrane.edp:
+    bound_relax_factor = 0, tol = 1e-13, mu_min = 1e-20), and
+  - by `cdyn run` with the pdas step solver at solver.tol = 1e-12, twice: method.pair = P1/P1
+    (M = Bᵀ C⁻¹ B in saddle form, UMFPACK) and method.mass = consistent (the same M
+    assembled explicitly, CHOLMOD),
+for n = 40, 80, 160.  Checks that the energies agree at every step to 1e-6 relative to
+J0 (the tolerance of tests/reference/compare_dynamic.py) and prints the time per step
+of each and the ratio FreeFEM / cdyn (target ≥ 20).  FreeFEM's time is the CPU time of
+its time loop (clock()), cdyn's the wall time of its time loop (summary.json s_per_step);
+both single-threaded here, so the two agree up to the load of the machine.
+
+Usage:  /usr/bin/python3 bench/bench_peer.py BUILD/apps/cdyn [WORKDIR] [--n 40,80,160] [--steps 300]
+Exit status 1 if an energy differs by more than 1e-6 relative.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EDP = os.path.join(HERE, "..", "reference_scripts", "bench_peer_membrane.edp")
+TOL = 1e-6
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def run_freefem(n, steps, work):
+    out = os.path.join(work, f"freefem_n{n}.csv")
+    env = dict(os.environ, FF_LOADPATH="/usr/lib/freefem++")
+    t = time.time()
+    p = subprocess.run(["FreeFem++", "-nw", "-v", "0", EDP, "-pair", "P1", "-scheme", "backward_euler", "-n", str(n),
+                        "-dt", "0.001", "-steps", str(steps), "-out", out], env=env, capture_output=True, text=True)
+    wall = time.time() - t
+    m = re.search(r"timing: steps (\d+) loop_s ([0-9.eE+-]+) ipopt_s ([0-9.eE+-]+)", p.stdout)
+    if p.returncode != 0 or not m:
+        sys.exit(f"FreeFEM failed (n = {n}):\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
+    return read_csv(out), float(m.group(2)) / steps, float(m.group(3)) / steps, wall
+
+
+def run_cdyn(cdyn, n, steps, work, method):
+    out = os.path.join(work, f"cdyn_n{n}_{method.replace('/', '').replace('=', '_')}")
+    subprocess.run([cdyn, "run", "--out", out, "--quiet", "--set", f"mesh.n={n}", "--set", method,
+                    "--set", "time.scheme=backward_euler", "--set", "time.dt=0.001", "--set", f"time.T={steps * 0.001}",
+                    "--set", "solver.tol=1e-12", "--set", "output.fields=false", "--set", "output.plots=false"],
+                   check=True)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    return read_csv(os.path.join(out, "history.csv")), summary
+
+
+def energy_difference(ff, cd):
+    J0 = abs(float(ff[0]["E_total"]))
+    return max(abs(float(a["E_total"]) - float(b["E_total"])) / J0 for a, b in zip(ff, cd))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cdyn")
+    ap.add_argument("work", nargs="?", default="out/bench_peer")
+    ap.add_argument("--n", default="40,80,160")
+    ap.add_argument("--steps", type=int, default=300, help="steps (the impact is at step ~258)")
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    print(f"load average at start: {os.getloadavg()[0]:.2f}")
+    print("| n | unknowns | steps | contact steps | FreeFEM+Ipopt s/step (Ipopt part) | cdyn P1/P1 s/step | "
+          "cdyn consistent s/step | ratio FreeFEM/cdyn (P1/P1, consistent) | max |dJ|/J0 |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    ok = True
+    for n in [int(v) for v in a.n.split(",")]:
+        ff, ff_step, ff_ipopt, _ = run_freefem(n, a.steps, a.work)
+        cd, s1 = run_cdyn(a.cdyn, n, a.steps, a.work, "method.pair=P1/P1")
+        cc, s2 = run_cdyn(a.cdyn, n, a.steps, a.work, "method.mass=consistent")
+        if len(ff) != len(cd) or len(ff) != len(cc):
+            sys.exit(f"n = {n}: {len(ff)} FreeFEM rows against {len(cd)}, {len(cc)} cdyn rows")
+        dJ = max(energy_difference(ff, cd), energy_difference(ff, cc))
+        ok = ok and dJ <= TOL
+        contact = sum(1 for r in cd if int(r["active"]) > 0)
+        print(f"| {n} | {s1['n_free']} | {a.steps} | {contact} | {ff_step * 1e3:.1f} ms ({ff_ipopt * 1e3:.1f} ms) | "
+              f"{s1['s_per_step'] * 1e3:.2f} ms | {s2['s_per_step'] * 1e3:.2f} ms | "
+              f"{ff_step / s1['s_per_step']:.0f}x, {ff_step / s2['s_per_step']:.0f}x | {dJ:.1e} |", flush=True)
+    print(f"load average at end: {os.getloadavg()[0]:.2f}")
+    if not ok:
+        print(f"FAIL: an energy differs by more than {TOL} relative to J0")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

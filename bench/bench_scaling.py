@@ -1,0 +1,72 @@
+#!/usr/bin/python3
+"""bench_scaling.py — wall time per step against the number of dofs (issue 9, scaling target).
+
+The seed's membrane (data/scenes/membrane.toml: P1+/P0, midpoint, dt = 0.001) for
+n = 40 … 640, each a whole `cdyn run` under /usr/bin/time -v: the time per step is the
+time loop's (summary.json s_per_step, its QP part qp_s_per_step), the peak memory the
+process's maximum resident set.  Two windows per n: `free` = the first 20 steps (no
+contact yet: one forward/back solve per step) and, with --contact, steps 1–270, which
+contain the impact at t ≈ 0.258 (long at n ≥ 320).  Prints a table and the least-squares
+exponent p of time/step ∝ N^p over the sizes (target p ≤ 1.2), with N the free dofs.
+
+Usage:  /usr/bin/python3 bench/bench_scaling.py BUILD/apps/cdyn [WORKDIR] [--n 40,80,160,320,640] [--steps 20]
+"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+
+def run(cdyn, n, steps, work):
+    out = os.path.join(work, f"n{n}_s{steps}")
+    p = subprocess.run(["/usr/bin/time", "-v", cdyn, "run", "--out", out, "--quiet", "--set", f"mesh.n={n}",
+                        "--set", f"time.T={steps * 0.001}", "--set", "output.fields=false",
+                        "--set", "output.plots=false", "--set", "output.every=1000000"],
+                       capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"cdyn run failed for n = {n}:\n{p.stderr[-3000:]}")
+    rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr).group(1))
+    wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([0-9:.]+)", p.stderr).group(1)
+    parts = [float(x) for x in wall.split(":")]
+    wall_s = sum(v * 60 ** (len(parts) - 1 - i) for i, v in enumerate(parts))
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    return s, rss, wall_s
+
+
+def fit(points):
+    xs = [math.log(p[0]) for p in points]
+    ys = [math.log(p[1]) for p in points]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cdyn")
+    ap.add_argument("work", nargs="?", default="out/bench_scaling")
+    ap.add_argument("--n", default="40,80,160,320,640")
+    ap.add_argument("--steps", type=int, default=20)
+    a = ap.parse_args()
+    os.makedirs(a.work, exist_ok=True)
+    print(f"load average at start: {os.getloadavg()[0]:.2f}")
+    print(f"| n | free dofs | steps | s/step | QP s/step | whole process (s) | peak RSS (MB) |")
+    print("|---|---|---|---|---|---|---|")
+    points, qpoints = [], []
+    for n in [int(v) for v in a.n.split(",")]:
+        s, rss, wall = run(a.cdyn, n, a.steps, a.work)
+        points.append((s["n_free"], s["s_per_step"]))
+        qpoints.append((s["n_free"], s["qp_s_per_step"]))
+        print(f"| {n} | {s['n_free']} | {s['n_steps']} | {s['s_per_step'] * 1e3:.2f} ms | "
+              f"{s['qp_s_per_step'] * 1e3:.2f} ms | {wall:.1f} | {rss / 1024:.0f} |", flush=True)
+    if len(points) >= 2:
+        print(f"fitted exponent: time/step ~ N^{fit(points):.2f} (QP part N^{fit(qpoints):.2f}); target <= 1.2")
+    print(f"load average at end: {os.getloadavg()[0]:.2f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
