@@ -1,6 +1,8 @@
 // bar_exact.hpp — exact solutions of two 1D elastic bar impact problems, the
 // analytic references of the `bar` model (derivations: docs/bar_impact.md).
 //
+// They are the seed's problem (1)–(6) in one dimension (σ = E u_x, Γ_C the end x = 0,
+// the contact condition (6) with u_N = −u(0,t) + g).
 // Both solve the wave equation with a Signorini condition at the left end,
 //
 //     ρ u_tt − E u_xx = 0  in (0, L),       c = √(E/ρ),

@@ -17,6 +17,8 @@ struct CellGeometry {
   double det = 0.0;          // det J (1D: the length); positive for valid cells
   double invJT[2][2] = {};   // J⁻ᵀ
 
+  // The map of cell `cell`: J from its vertices, det J and J⁻ᵀ (no check of the sign;
+  // Mesh::check refuses cells of non-positive measure).
   CellGeometry(const Mesh& mesh, int cell);
 
   // Physical point of reference point ξ.

@@ -1,5 +1,7 @@
 // dirichlet.hpp — Dirichlet conditions by lifting and elimination.
 //
+// The seed's u = 0 on Γ_D (eq. 4; the model problem's u = 0.05, its experiments' u = 0.02
+// on ∂Ω): W^h is the affine space of finite element functions with those values.
 // The dofs of W^h split into free dofs f and fixed dofs d (those on the Dirichlet
 // boundary parts).  A full coefficient vector is
 //     U = P U_f + U_D,

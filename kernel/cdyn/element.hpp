@@ -11,6 +11,9 @@
 //   P2  : vertex functions λi(2λi − 1), then the edge functions 4 λiλj for the edges
 //         (0,1), (1,2), (2,0) (triangle) or the midpoint (interval);
 //   P0  : the constant 1 (one dof, attached to the cell).
+// The seed's pair for the membrane ("A model problem") is W^h = P1+ with H^h = P0; its
+// slides call φ_T a "quadratic bubble", which is the 1D case (4λ0λ1); on triangles the
+// bubble vanishing on the edges is the cubic λ0λ1λ2.
 #pragma once
 
 #include <array>

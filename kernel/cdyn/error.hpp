@@ -1,5 +1,7 @@
 // error.hpp — the two kinds of failure cdyn reports.
 //
+// Not part of the seed's mathematics: the kernel's contract for failures (DESIGN.md §4).
+//
 // InputError: the user gave something cdyn cannot use (a missing or malformed file,
 // an unknown key, dt <= 0, ...).  The message names the file or key and says what is
 // wrong; the command line prints it as one line and exits with status 2.

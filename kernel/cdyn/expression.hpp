@@ -3,7 +3,8 @@
 // Loads, initial states, Dirichlet values and obstacles are written in scenes as
 // expressions such as "-0.6" or "0.02*sin(pi*x)*(t<0.5)", parsed by muParser (its
 // built-in functions sin, cos, exp, sqrt, abs, min, max, the ternary ?:, ...; the
-// constant pi is predefined as _pi by muParser and added here as pi).
+// constant pi is predefined as _pi by muParser and added here as pi).  They give the
+// seed's data: f and g of eqs. 1 and 3, u₀ and u₁ of eq. 5, the obstacle α of eq. 16.
 #pragma once
 
 #include <string>

@@ -1,7 +1,9 @@
 // fe_space.hpp — a finite element space on a mesh: its degrees of freedom (dof map).
 //
 // A space is a reference element (P0, P1, P1+, P2) repeated over the cells of a mesh,
-// with `components` copies for vector-valued fields (2 for plane elasticity).
+// with `components` copies for vector-valued fields (2 for plane elasticity).  Both
+// spaces of the seed's approximation (eq. 9) are FESpaces: W^h (displacement, basis φ_i)
+// and H^h (velocity, basis ψ_i).
 //
 // Numbering of the scalar dofs (one scalar function per dof):
 //   P1, P1+, P2 : vertex dofs first — scalar dof v IS vertex v — then one bubble per
@@ -32,6 +34,9 @@ using Field = std::function<double(double x, double y, double t)>;
 
 class FESpace {
  public:
+  // The space of `element` on `mesh` (kept by pointer: the mesh must outlive the space);
+  // builds the dof map and the nodal points.  Throws InputError unless components is 1
+  // or 2.
   FESpace(const Mesh& mesh, Element element, int components = 1);
 
   const Mesh& mesh() const { return *mesh_; }
@@ -65,7 +70,9 @@ class FESpace {
   // vertices and, for P2 in 2D, their edge dofs (sorted, unique).
   std::vector<int> boundary_scalar_dofs(const std::vector<int>& parts) const;
 
-  // Nodal interpolant of a scalar field at time t (components must be 1).  For P1+
+  // Nodal interpolant of a scalar field at time t (components must be 1): the seed's
+  // u₀^h (eq. 9), the rate U̇⁰ from which C V⁰ = B U̇⁰ gives V⁰ (eq. 11), the Dirichlet
+  // data.  For P1+
   // the bubble coefficient makes the interpolant exact at the centroid.
   Eigen::VectorXd interpolate(const Field& f, double t = 0.0) const;
 

@@ -1,8 +1,10 @@
 // mesh.hpp — simplicial meshes in 1D (intervals) and 2D (triangles).
 //
-// A mesh is geometry and topology only: vertex coordinates, cells given by their
-// vertices, and the boundary facets (points in 1D, edges in 2D), each facet tagged
-// with the boundary part it belongs to.  It knows nothing of finite elements.
+// The seed's triangulation 𝒯^h ("A model problem": a regular mesh of Ω, its vertex
+// set 𝒜 where the constraints act).  A mesh is geometry and topology only: vertex
+// coordinates, cells given by their vertices, and the boundary facets (points in 1D,
+// edges in 2D), each facet tagged with the boundary part it belongs to.  It knows
+// nothing of finite elements.
 //
 // Conventions
 //  - Coordinates are stored as (x, y); a 1D mesh has y = 0 everywhere.

@@ -27,6 +27,8 @@ struct OscillatorData {
 // The one-element mesh the oscillator lives on (its dof is the vertex x = 0).
 Mesh oscillator_mesh();
 
+// The ConstrainedProblem of m ü + k u = F(t) + λ, u ≥ g (the seed's one-dof system, as
+// eq. 16 with M = m, A = k, G = −1, α = −g), ready for any time scheme.
 // InputError for m ≤ 0 or k < 0 (k = 0 is free flight, allowed).
 ConstrainedProblem build_oscillator(const Mesh& mesh, const OscillatorData& data);
 

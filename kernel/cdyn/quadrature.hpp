@@ -4,6 +4,8 @@
 // (0,1).  A rule of degree p integrates every polynomial of total degree <= p exactly
 // (up to round-off); its weights sum to the reference measure (1, resp. 1/2).
 //
+// They compute every integral of the seed's matrices A, B, C and L (eq. 10).
+//
 // Why these rules: the assembly needs, on triangles, products as high as a bubble
 // times a bubble (λ1λ2λ3)² — degree 6 — and the error norms need more.  Instead of a
 // table of special rules we use Gauss–Legendre rules (nodes from the Golub–Welsch

@@ -1,0 +1,27 @@
+# cdynInstall.cmake — `cmake --install` of the library (issue 11): the three public
+# libraries, their headers under include/cdyn/, and a CMake package so that an outside
+# project writes
+#     find_package(cdyn 0.1 REQUIRED)
+#     target_link_libraries(app PRIVATE cdyn::cdyn cdyn::meshing cdyn::io)
+# The command-line front end (cdyn_frontend) and the `cdyn` program are not part of the
+# library API and are not installed here.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(CDYN_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/cdyn)
+
+install(TARGETS cdyn cdyn_meshing cdyn_io EXPORT cdynTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
+        FILE_SET HEADERS DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT cdynTargets NAMESPACE cdyn:: DESTINATION ${CDYN_INSTALL_CMAKEDIR})
+
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/cdynConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/cdynConfig.cmake
+                              INSTALL_DESTINATION ${CDYN_INSTALL_CMAKEDIR})
+# 0.x: a minor version may change the API, so only the same major.minor is compatible.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/cdynConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/cdynConfig.cmake ${PROJECT_BINARY_DIR}/cdynConfigVersion.cmake
+        DESTINATION ${CDYN_INSTALL_CMAKEDIR})
