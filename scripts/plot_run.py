@@ -8,7 +8,11 @@ Writes RUN_DIR/plots/:
                the relative drift (J - J0)/|J0|, where conservation shows (or not);
   probes.png   u@P and lambda@P against t for every probe P (when the scene has any);
   contact.png  the number of active constraints per step and, at the probes, the
-               contact force -lambda@P (lambda <= 0 is the seed's multiplier).
+               contact force -lambda@P (lambda <= 0 is the seed's multiplier);
+  contact_pressure.png  (elasticity runs, from contact.csv) the contact pressure along
+               Gamma_C over time: a space-time image and the profiles at a few times,
+               where the spurious oscillations of a standard mass show against the
+               smooth pressure of the well-posed methods.
 docs/outputs.md describes the columns.  `cdyn run` runs a copy of this file compiled
 into the binary (apps/CMakeLists.txt), so edits here take effect at the next build;
 running it by hand remakes the plots of an existing run.
@@ -64,13 +68,19 @@ def plot_energy(h, summary, path):
 
 
 def probe_names(h):
-    return [k[2:] for k in h if k.startswith("u@")]
+    return [k[len("lambda@"):] for k in h if k.startswith("lambda@")]
+
+
+def displacement_columns(h, p):
+    """u@P for a scalar field, ux@P and uy@P for elasticity."""
+    return [c for c in ("u@" + p, "ux@" + p, "uy@" + p) if c in h]
 
 
 def plot_probes(h, summary, path):
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6))
     for p in probe_names(h):
-        top.plot(h["t"], h["u@" + p], label="u@" + p)
+        for c in displacement_columns(h, p):
+            top.plot(h["t"], h[c], label=c)
         bottom.plot(h["t"], h["lambda@" + p], label="λ@" + p)
     top.set_ylabel("displacement u")
     top.legend()
@@ -102,6 +112,56 @@ def plot_contact(h, summary, path):
     plt.close(fig)
 
 
+def read_contact(path):
+    """contact.csv as (times, s, pressure[time][vertex]), the vertices sorted by s."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    times, s, pressure = [], [], []
+    for r in rows:
+        t = float(r["t"])
+        if not times or t != times[-1]:
+            times.append(t)
+            pressure.append([])
+        if len(times) == 1:
+            s.append(float(r["s"]))
+        pressure[-1].append(float(r["pressure"]))
+    return times, s, pressure
+
+
+def plot_contact_pressure(contact_csv, summary, path):
+    times, s, pressure = read_contact(contact_csv)
+    if not s or len(times) < 2:
+        return
+    # Contact means a pressure above the QP's round-off (about 1e-11 of the peak): the
+    # part of Γ_C that touches at some time, with a margin of two vertices.
+    peak = max(max(p) for p in pressure)
+    floor = 1e-8 * peak if peak > 0 else float("inf")
+    touched = [i for i in range(len(s)) if any(p[i] > floor for p in pressure)] or list(range(len(s)))
+    lo, hi = max(min(touched) - 2, 0), min(max(touched) + 2, len(s) - 1)
+    s = s[lo : hi + 1]
+    pressure = [p[lo : hi + 1] for p in pressure]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5), gridspec_kw={"width_ratios": [3, 2]})
+    image = left.pcolormesh(s, times, pressure, shading="nearest", cmap="viridis")
+    fig.colorbar(image, ax=left, label="contact pressure")
+    left.set_xlabel("position along the plane s")
+    left.set_ylabel("t")
+    left.set_title(title(summary), fontsize=9)
+    # Profiles at the time of the peak pressure and at a few times across the contact.
+    in_contact = [k for k, p in enumerate(pressure) if max(p) > floor]
+    if in_contact:
+        first, last = in_contact[0], in_contact[-1]
+        at_peak = max(in_contact, key=lambda k: max(pressure[k]))
+        picks = sorted({first + (last - first) * q // 4 for q in range(1, 4)} | {at_peak})
+        for k in picks:
+            right.plot(s, pressure[k], marker=".", label="t = %.4g" % times[k])
+        right.legend(fontsize=8)
+    right.set_xlabel("position along the plane s")
+    right.set_ylabel("contact pressure")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main(run_dir):
     h = read_history(os.path.join(run_dir, "history.csv"))
     with open(os.path.join(run_dir, "summary.json")) as f:
@@ -112,6 +172,9 @@ def main(run_dir):
     if probe_names(h):
         plot_probes(h, summary, os.path.join(out, "probes.png"))
     plot_contact(h, summary, os.path.join(out, "contact.png"))
+    contact_csv = os.path.join(run_dir, "contact.csv")
+    if os.path.isfile(contact_csv):
+        plot_contact_pressure(contact_csv, summary, os.path.join(out, "contact_pressure.png"))
 
 
 if __name__ == "__main__":

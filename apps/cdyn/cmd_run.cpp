@@ -1,18 +1,23 @@
 // cmd_run.cpp — `cdyn run`: integrate a scene in time and write its results
 // (DESIGN.md §5, docs/outputs.md): history.csv (one row per step), summary.json,
-// scene.toml (the scene as run), fields.pvd + fields/*.vtu (output.fields) and
-// plots/*.png (output.plots).
+// scene.toml (the scene as run), fields.pvd + fields/*.vtu (output.fields),
+// contact.csv (elasticity: the contact force and pressure along Γ_C) and plots/*.png
+// (output.plots).
 //
 // Every step records the discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU split into its
 // kinetic and potential parts, the active constraints, the QP iterations and time,
 // and the probes (u, v and the seed's multiplier λ ≤ 0 at named points).  A NaN or a
 // QP failure stops the run with the step number (exit status 3), after closing the
-// field series so that the blow-up can be looked at; summary.json is written after
-// the time loop, so a directory without it is an unfinished run.  The plots come
-// last, made from the finished files by the embedded scripts/plot_run.py.
+// history and the field series so that the blow-up can be looked at; summary.json is
+// written after the time loop, so a directory without it is an unfinished run.  Every
+// file is written under a temporary name and renamed when complete (atomic_file.hpp);
+// Ctrl-C stops the loop cleanly: the files hold the steps computed, summary.json says
+// "partial": true, the exit status is 130.  The plots come last, made from the
+// finished files by the embedded scripts/plot_run.py.
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,11 +26,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "cdyn/atomic_file.hpp"
 #include "cdyn/error.hpp"
+#include "cdyn/fields_output.hpp"
 #include "commands.hpp"
+#include "contact_history.hpp"
 #include "embedded_scripts.hpp"
 #include "exact_solution.hpp"
-#include "cdyn/fields_output.hpp"
 #include "python_script.hpp"
 #include "simulation.hpp"
 
@@ -35,20 +42,46 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+// Ctrl-C (SIGINT) or SIGTERM during the time loop: the handler only raises this flag;
+// the loop stops after the step in progress and the run ends as usual, with what was
+// computed so far written and flagged "partial" in summary.json (exit status 130).
+volatile std::sig_atomic_t interrupted = 0;
+extern "C" void on_interrupt(int) { interrupted = 1; }
 
-// The probe values of the current state: u (full field), v (displacement rate over
-// the last step) and λ (the seed's multiplier at the vertex nearest to the probe).
-struct ProbeValues {
-  double u, v, lambda;
+// Installs the handler for the time loop and puts the default one back afterwards
+// (a second Ctrl-C during the plots or outside the loop kills as usual).
+struct InterruptGuard {
+  InterruptGuard() {
+    interrupted = 0;
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+  }
+  ~InterruptGuard() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
 };
 
-ProbeValues probe(const Simulation& sim, const Probe& pr, const Eigen::VectorXd& U_full,
-                  const Eigen::VectorXd& rate_full, const State& s) {
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The probe columns of history.csv: u, v and λ for a scalar field; for elasticity the
+// two components of u and v and the seed's normal multiplier λ_N ≤ 0.
+std::vector<std::string> probe_columns(const Simulation& sim, const Probe& pr) {
+  if (sim.components == 1) return {"u@" + pr.name, "v@" + pr.name, "lambda@" + pr.name};
+  return {"ux@" + pr.name, "uy@" + pr.name, "vx@" + pr.name, "vy@" + pr.name, "lambda@" + pr.name};
+}
+
+// The probe values of the current state, in the order of probe_columns: u (full
+// field), v (displacement rate over the last step) at the point, and λ at the vertex
+// nearest to it (scalar: the seed's multiplier; elasticity: λ_N = −F·n).
+std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::VectorXd& U_full,
+                          const Eigen::VectorXd& rate_full, const State& s, const Eigen::VectorXd& reaction_xy) {
   const FESpace& W = *sim.problem.W;
-  ProbeValues out{W.value_in_cell(U_full, pr.where.cell, pr.where.xi),
-                  W.value_in_cell(rate_full, pr.where.cell, pr.where.xi), 0.0};
-  out.lambda = vertex_multiplier(sim.problem, s.reaction, pr.vertex);
+  std::vector<double> out;
+  for (const Eigen::VectorXd* field : {&U_full, &rate_full})
+    for (int k = 0; k < sim.components; ++k) out.push_back(W.value_in_cell(*field, pr.where.cell, pr.where.xi, k));
+  out.push_back(sim.components == 1 ? vertex_multiplier(sim.problem, s.reaction, pr.vertex)
+                                    : normal_multiplier(sim, reaction_xy, pr.vertex));
   return out;
 }
 
@@ -85,10 +118,69 @@ Scene scene_as_run(Scene scene, const std::string& scene_file) {
 // An earlier run's files in the same directory go first: a directory holds one run.
 void remove_previous_outputs(const std::filesystem::path& out) {
   std::error_code ec;
+  remove_stale_temporaries(out);  // of a run that was killed
   std::filesystem::remove(out / "summary.json", ec);
+  std::filesystem::remove(out / "history.csv", ec);
+  std::filesystem::remove(out / "contact.csv", ec);
   remove_fields(out);
-  for (const char* png : {"energy.png", "probes.png", "contact.png"}) std::filesystem::remove(out / "plots" / png, ec);
+  for (const char* png : {"energy.png", "probes.png", "contact.png", "contact_pressure.png"}) std::filesystem::remove(out / "plots" / png, ec);
 }
+
+// history.csv (one row per step) and, for elasticity against a plane, contact.csv
+// (every output.contact_every steps), the per-step contact force and momentum columns and the
+// impact summary.
+class History {
+ public:
+  History(const Simulation& sim, const std::filesystem::path& out)
+      : sim_(sim), file_(out / "history.csv"), csv_(file_.stream()) {
+    csv_.precision(17);
+    csv_ << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s";
+    if (sim.components == 2) {
+      momentum_.emplace(sim);
+      csv_ << ",contact_force,px,py";
+      if (sim.has_plane) contact_.emplace(sim, out / "contact.csv");
+    }
+    for (const auto& pr : sim.probes)
+      for (const std::string& c : probe_columns(sim, pr)) csv_ << "," << c;
+    csv_ << "\n";
+  }
+
+  void record(int step, const State& s, const StepStats& st, const Energy& E, const Eigen::VectorXd& rate) {
+    csv_ << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
+         << st.qp_iterations << "," << st.qp_seconds;
+    const ConstrainedProblem& p = sim_.problem;
+    const Eigen::VectorXd U_full = p.full(s.U);
+    const Eigen::VectorXd reaction_xy = s.reaction.size() > 0 ? p.global(s.reaction) : Eigen::VectorXd();
+    if (momentum_) {
+      const bool write = step % sim_.contact_every == 0 || step == sim_.n_steps;
+      const double force = contact_ ? contact_->record(step, s.t, U_full, reaction_xy, write) : 0.0;
+      const Point P = (*momentum_)(s.V);
+      csv_ << "," << force << "," << P.x << "," << P.y;
+      impact_.observe({step, s.t, E.total(), E.kinetic, P}, st.active, force);
+    }
+    for (const auto& pr : sim_.probes)
+      for (double v : probe(sim_, pr, U_full, rate, s, reaction_xy)) csv_ << "," << v;
+    csv_ << "\n";
+  }
+
+  // The files get their names only here (atomic_file.hpp): at the end of the run, at
+  // an interruption or at a numerical failure, never half-written by a killed process.
+  void close() {
+    file_.commit();
+    if (contact_) contact_->close();
+  }
+
+  // summary.json's "impact" (elasticity against a plane), else null.
+  nlohmann::ordered_json impact() const { return contact_ ? impact_.summary(sim_.dt) : nlohmann::ordered_json(); }
+
+ private:
+  const Simulation& sim_;
+  AtomicFile file_;
+  std::ostream& csv_;
+  std::optional<LinearMomentum> momentum_;
+  std::optional<ContactHistory> contact_;
+  ImpactMonitor impact_;
+};
 
 }  // namespace
 
@@ -119,13 +211,8 @@ int cmd_run(const RunOptions& opt) {
   std::filesystem::create_directories(out, ec);
   if (ec) throw InputError(out.string() + ": cannot create the output directory (" + ec.message() + ")");
   remove_previous_outputs(out);
-  std::ofstream(out / "scene.toml") << scene_as_run(scene, opt.scene).dump();
-  std::ofstream csv(out / "history.csv");
-  if (!csv) throw InputError((out / "history.csv").string() + ": cannot write");
-  csv.precision(17);
-  csv << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s";
-  for (const auto& pr : sim.probes) csv << ",u@" << pr.name << ",v@" << pr.name << ",lambda@" << pr.name;
-  csv << "\n";
+  write_file_atomically(out / "scene.toml", scene_as_run(scene, opt.scene).dump());
+  History history(sim, out);
 
   const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
   State s = sim.initial;
@@ -136,17 +223,9 @@ int cmd_run(const RunOptions& opt) {
 
   auto record = [&](int step, const StepStats& st) {
     const Energy E = sim.scheme->energy(s);
-    const double Ek = E.kinetic, Ep = E.potential;
     E_final = E.total();
     max_drift = std::max(max_drift, std::abs(E_final - E0) / std::abs(E0));
-    csv << step << "," << s.t << "," << Ek << "," << Ep << "," << E_final << "," << st.active << "," << st.qp_iterations
-        << "," << st.qp_seconds;
-    const Eigen::VectorXd U_full = p.full(s.U);
-    for (const auto& pr : sim.probes) {
-      const ProbeValues v = probe(sim, pr, U_full, rate, s);
-      csv << "," << v.u << "," << v.v << "," << v.lambda;
-    }
-    csv << "\n";
+    history.record(step, s, st, E, rate);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -163,14 +242,17 @@ int cmd_run(const RunOptions& opt) {
   record(0, StepStats{});
   write_fields_at(0);
 
-  for (int n = 1; n <= sim.n_steps; ++n) {
+  int steps_done = 0;
+  std::optional<InterruptGuard> guard(std::in_place);
+  for (int n = 1; n <= sim.n_steps && !interrupted; ++n) {
     const Eigen::VectorXd U_old = s.U;
     StepStats st;
     try {
       st = sim.scheme->step(s);
       if (!s.U.allFinite() || !s.V.allFinite()) throw NumericalError("the solution is not finite (NaN or Inf)");
     } catch (const NumericalError& e) {
-      if (fields) fields->finish();  // the series up to the failure, for a look at it
+      history.close();  // the history and the field series up to the failure, for a look at them
+      if (fields) fields->finish();
       throw NumericalError("step " + std::to_string(n) + " (t = " + std::to_string(s.t + sim.dt) + "): " + e.what());
     }
     rate.setZero();
@@ -181,13 +263,21 @@ int cmd_run(const RunOptions& opt) {
     max_active = std::max(max_active, st.active);
     max_violation = std::max(max_violation, p.max_violation(s.U));
     record(n, st);
+    steps_done = n;
     write_fields_at(n);
     if (show_progress && (n % 10 == 0 || n == sim.n_steps))
       progress(n, sim.n_steps, s.t, max_drift, st.active, seconds_since(t0));
   }
+  guard.reset();
+  const bool partial = steps_done < sim.n_steps;
+  if (partial && fields && steps_done % sim.output_every != 0) {  // the last state computed
+    const auto tf = Clock::now();
+    fields->write(steps_done, s.t, p.full(s.U), rate, s.reaction);
+    fields_seconds += seconds_since(tf);
+  }
   const double wall = seconds_since(t0) - fields_seconds;
   if (show_progress) std::fprintf(stderr, "\n");
-  csv.close();
+  history.close();
   if (fields) fields->finish();
 
   nlohmann::ordered_json j;
@@ -201,7 +291,9 @@ int cmd_run(const RunOptions& opt) {
   j["n_free"] = p.n_free();
   j["n_velocity"] = p.mass->n_velocity();
   j["n_constraints"] = p.constrained.size();
-  j["n_steps"] = sim.n_steps;
+  j["n_steps"] = steps_done;
+  j["partial"] = partial;  // interrupted (Ctrl-C/SIGTERM) after n_steps of n_steps_asked
+  j["n_steps_asked"] = sim.n_steps;
   j["dt"] = sim.dt;
   j["T"] = s.t;
   j["h"] = sim.mesh->h_max();
@@ -211,16 +303,18 @@ int cmd_run(const RunOptions& opt) {
   j["max_violation"] = max_violation;
   j["max_active"] = max_active;
   j["wall_s"] = wall;
-  j["s_per_step"] = wall / sim.n_steps;
-  j["qp_s_per_step"] = qp_seconds / sim.n_steps;
-  j["qp_iters_mean"] = qp_iters / sim.n_steps;
+  const int per = std::max(steps_done, 1);
+  j["s_per_step"] = wall / per;
+  j["qp_s_per_step"] = qp_seconds / per;
+  j["qp_iters_mean"] = qp_iters / per;
   j["fields_s"] = fields_seconds;
   if (u_exact) j["error_exact"] = l2_error_at(sim, *u_exact, s);  // ‖u_h(T) − u(T)‖_L2
+  if (sim.has_plane) j["impact"] = history.impact();
   j["wellposed"] = wellposedness_summary(sim);
-  std::ofstream(out / "summary.json") << j.dump(2) << "\n";
+  write_file_atomically(out / "summary.json", j.dump(2) + "\n");
 
   std::string plot_note;
-  if (make_plots) plot_note = run_python_script(kPlotRunScript, {out.string()});
+  if (make_plots && !partial) plot_note = run_python_script(kPlotRunScript, {out.string()});
 
   if (!opt.quiet) {
     std::printf(
@@ -228,10 +322,15 @@ int cmd_run(const RunOptions& opt) {
         "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, max |J - J0|/|J0| = "
         "%.3e; max constraint violation %.2e.\n  Condition (12): %s.\n  Results in %s\n",
         sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), sim.solver_name.c_str(),
-        p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()), sim.n_steps, sim.dt, s.t, wall,
-        wall / sim.n_steps, qp_iters / sim.n_steps, E0, E_final, max_drift, max_violation,
+        p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()), steps_done, sim.dt, s.t, wall,
+        wall / per, qp_iters / per, E0, E_final, max_drift, max_violation,
         wellposedness_line(j["wellposed"]).c_str(), out.string().c_str());
     if (!plot_note.empty()) std::printf("  Note: no plots (%s).\n", plot_note.c_str());
+  }
+  if (partial) {
+    std::fprintf(stderr, "cdyn: interrupted after step %d of %d; the results so far are in %s (summary.json: partial = true)\n",
+                 steps_done, sim.n_steps, out.string().c_str());
+    return 130;  // the shell's status for a run ended by SIGINT
   }
   return 0;
 }

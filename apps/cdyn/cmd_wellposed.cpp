@@ -21,9 +21,7 @@ int cmd_wellposed(const WellposedOptions& opt) {
   Scene scene = Scene::load(opt.scene);
   for (const auto& a : opt.sets) scene.set(a);
   const Simulation sim = make_simulation(scene);
-  WellPosednessSetup setup;
-  setup.dirichlet_parts = sim.dirichlet_parts;
-  setup.constrained_vertices = sim.constrained_vertices;
+  const WellPosednessSetup setup = wellposedness_setup(sim);  // elasticity: 2 components, the plane's normal
 
   std::vector<std::string> specs = seed_pairs();
   for (const auto& m : classical_mass_models()) specs.push_back(m);

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+
+#include "cdyn/wellposedness.hpp"
 #include <string>
 #include <vector>
 
@@ -48,6 +50,11 @@ struct WellposedOptions {
   bool json = false;
 };
 int cmd_wellposed(const WellposedOptions& options);
+
+// The setup of condition (12) for a simulation: its Dirichlet parts, constrained
+// vertices and, for elasticity, two components and the plane's normal.  InputError
+// when the check does not apply (rollers: wellposedness.hpp fixes whole vertices).
+WellPosednessSetup wellposedness_setup(const Simulation& sim);
 
 // Condition (12) for a simulation's pair and constraints, as summary.json's
 // "wellposed" entry ({"beta", "satisfied"}, or why it was not computed), and as a

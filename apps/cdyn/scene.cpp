@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -20,15 +21,18 @@ const std::set<std::string> kKnownKeys = {
     "mesh.kind",      "mesh.n",         "mesh.length",     "mesh.file",
     "physics.model",  "physics.E",      "physics.rho",     "physics.tension", "physics.f",
     "physics.m",      "physics.k",
-    "dirichlet.parts", "dirichlet.value",
+    "physics.nu",     "physics.lambda", "physics.mu",      "physics.gravity",
+    "dirichlet.parts", "dirichlet.value", "dirichlet.components",
+    "neumann.parts",  "neumann.traction",
     "obstacle.enabled", "obstacle.where", "obstacle.g",
+    "obstacle.point", "obstacle.normal",
     "initial.u",      "initial.v",
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
     "time.beta",      "time.gamma",     "time.restitution",
     "solver.name",    "solver.tol",     "solver.max_iterations",
     "exact.solution",
-    "output.every",   "output.probes",  "output.fields",   "output.plots",
+    "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 
@@ -132,7 +136,13 @@ double Scene::number(const std::string& key, std::optional<double> fallback) con
 int Scene::integer(const std::string& key, std::optional<int> fallback) const {
   const toml::node* n = find_required(key, fallback.has_value());
   if (!n) return *fallback;
-  if (auto v = n->value_exact<int64_t>()) return static_cast<int>(*v);
+  if (auto v = n->value_exact<int64_t>()) {
+    // TOML integers are 64-bit; every integer key of a scene is an int (mesh.n,
+    // output.every, ...): a value beyond int would silently wrap (fuzz regression).
+    if (*v < std::numeric_limits<int>::min() || *v > std::numeric_limits<int>::max())
+      throw InputError(key + ": " + std::to_string(*v) + " is out of range");
+    return static_cast<int>(*v);
+  }
   throw InputError(key + ": expected an integer, got " + type_name(*n));
 }
 
@@ -161,12 +171,20 @@ std::vector<std::string> Scene::strings(const std::string& key, std::vector<std:
   const toml::node* n = find(key);
   if (!n) return fallback;
   if (auto v = n->value_exact<std::string>()) return {*v};
+  if (n->value<double>()) return {string(key)};  // one number where expressions are expected
   std::vector<std::string> out;
   if (const toml::array* a = n->as_array()) {
     for (const auto& e : *a) {
-      auto v = e.value_exact<std::string>();
-      if (!v) throw InputError(key + ": expected a list of strings");
-      out.push_back(*v);
+      if (auto v = e.value_exact<std::string>()) {
+        out.push_back(*v);
+      } else if (auto x = e.value<double>()) {  // a number where an expression is expected
+        std::ostringstream text;
+        text.precision(17);
+        text << *x;
+        out.push_back(text.str());
+      } else {
+        throw InputError(key + ": expected a list of strings");
+      }
     }
     return out;
   }

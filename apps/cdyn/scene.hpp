@@ -32,7 +32,8 @@ class Scene {
   int integer(const std::string& key, std::optional<int> fallback = {}) const;
   bool boolean(const std::string& key, std::optional<bool> fallback = {}) const;
   std::string string(const std::string& key, std::optional<std::string> fallback = {}) const;
-  // A string or a list of strings.
+  // A string or a list of strings (numbers, alone or in the list, are read as their text, so
+  // that a list of expressions may hold plain numbers: traction = [0, -10]).
   std::vector<std::string> strings(const std::string& key, std::vector<std::string> fallback = {}) const;
   std::vector<double> numbers(const std::string& key) const;
   // The names under a table key (e.g. the probes of output.probes).

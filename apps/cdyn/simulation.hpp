@@ -29,6 +29,7 @@ struct Simulation {
   std::string scene_name, model, pair, scheme_name, solver_name;
   double dt = 0, T = 0, tol = 0;
   int n_steps = 0, output_every = 1;
+  int contact_every = 1;  // period of contact.csv's rows (elasticity)
   std::unique_ptr<Mesh> mesh;
   ConstrainedProblem problem;
   State initial;
@@ -36,7 +37,17 @@ struct Simulation {
   std::unique_ptr<TimeScheme> scheme;
   std::vector<Probe> probes;
   std::vector<int> dirichlet_parts;        // for condition (12)
-  std::vector<int> constrained_vertices;
+  std::vector<int> dirichlet_components;   // elasticity's rollers (empty: all components fixed)
+  std::vector<int> constrained_vertices;   // vertices carrying a constraint (sorted)
+
+  // Elasticity (physics.model = "elasticity"): two displacement components, and the
+  // rigid plane through `plane_point` with unit normal `plane_normal` pointing into the
+  // body's side (elastic_contact.hpp); Γ_C is `contact_parts`.  The scalar models keep
+  // components = 1 and no plane.
+  int components = 1;
+  bool has_plane = false;
+  Point plane_point, plane_normal;
+  std::vector<int> contact_parts;
 };
 
 // Builds and checks everything (bad input throws InputError naming the key).

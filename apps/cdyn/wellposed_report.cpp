@@ -11,6 +11,17 @@
 
 namespace cdyn::app {
 
+WellPosednessSetup wellposedness_setup(const Simulation& sim) {
+  if (!sim.dirichlet_components.empty())
+    throw InputError("dirichlet.components: rollers are not supported by the check of condition (12)");
+  WellPosednessSetup setup;
+  setup.dirichlet_parts = sim.dirichlet_parts;
+  setup.constrained_vertices = sim.constrained_vertices;
+  setup.components = sim.components;
+  if (sim.components == 2) setup.normal = sim.plane_normal;
+  return setup;
+}
+
 nlohmann::ordered_json wellposedness_summary(const Simulation& sim) {
   nlohmann::ordered_json j;
   // A run reports β only where the dense σ_min is cheap next to the run (0.3 s at the
@@ -24,11 +35,8 @@ nlohmann::ordered_json wellposedness_summary(const Simulation& sim) {
                         " in a run; `cdyn wellposed` computes it up to " + std::to_string(kWellposednessDenseLimit);
     return j;
   }
-  WellPosednessSetup setup;
-  setup.dirichlet_parts = sim.dirichlet_parts;
-  setup.constrained_vertices = sim.constrained_vertices;
   try {
-    const WellPosedness w = wellposedness_row(*sim.mesh, sim.pair, setup, sim.problem.W->element());
+    const WellPosedness w = wellposedness_row(*sim.mesh, sim.pair, wellposedness_setup(sim), sim.problem.W->element());
     j["beta"] = w.beta;
     j["satisfied"] = w.satisfied;
     j["dim_ker_B"] = w.dim_ker_B;

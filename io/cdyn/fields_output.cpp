@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
+#include "cdyn/atomic_file.hpp"
 #include "cdyn/error.hpp"
 
 namespace cdyn {
@@ -54,12 +54,17 @@ double vertex_multiplier(const ConstrainedProblem& problem, const Eigen::VectorX
 
 void remove_fields(const std::filesystem::path& out) {
   std::error_code ec;
-  std::filesystem::remove(out / "fields.pvd", ec);
-  if (!std::filesystem::is_directory(out / "fields", ec)) return;
-  std::vector<std::filesystem::path> old;
+  std::vector<std::filesystem::path> old{out / "fields.pvd"};
+  // fields.pvd's temporaries left by an interrupted run (atomic_file.hpp) — only its
+  // own: the run now starting may be writing its other outputs' temporaries in `out`
+  for (const auto& entry : std::filesystem::directory_iterator(out, ec))
+    if (is_atomic_temporary(entry.path()) && entry.path().filename().string().rfind(".fields.pvd.", 0) == 0)
+      old.push_back(entry.path());
+  // fields/step_*.vtu and every temporary in fields/
   for (const auto& entry : std::filesystem::directory_iterator(out / "fields", ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind("step_", 0) == 0 && entry.path().extension() == ".vtu") old.push_back(entry.path());
+    if ((name.rfind("step_", 0) == 0 && entry.path().extension() == ".vtu") || is_atomic_temporary(entry.path()))
+      old.push_back(entry.path());
   }
   for (const auto& path : old) std::filesystem::remove(path, ec);
 }
@@ -144,24 +149,30 @@ void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, cons
   char name[32];
   std::snprintf(name, sizeof name, "step_%06d.vtu", step);
   const std::string file = std::string("fields/") + name;
-  std::ofstream os(out_ / file, std::ios::binary);
+  // Written under a temporary name and renamed when complete (atomic_file.hpp): an
+  // interrupted run leaves no truncated step_*.vtu.
+  AtomicFile vtu(out_ / file);
+  std::ostream& os = vtu.stream();
   os << xml.str();
   os.write(blocks.data(), static_cast<std::streamsize>(blocks.size()));
   os.write(geometry_blocks_.data(), static_cast<std::streamsize>(geometry_blocks_.size()));
   os << "\n  </AppendedData>\n</VTKFile>\n";
-  if (!os) throw InputError((out_ / file).string() + ": cannot write");
+  vtu.commit();
   frames_.push_back({t, file});
 }
 
 void FieldsWriter::finish() const {
-  std::ofstream pvd(out_ / "fields.pvd");
+  // fields.pvd lists only files already renamed into place; it is itself atomic, so
+  // a reader never sees a collection cut in the middle.
+  AtomicFile file(out_ / "fields.pvd");
+  std::ostream& pvd = file.stream();
   pvd << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << byte_order() << "\">\n"
       << "  <Collection>\n";
   for (const Frame& f : frames_)
     pvd << "    <DataSet timestep=\"" << exact(f.t) << "\" group=\"\" part=\"0\" file=\"" << f.file << "\"/>\n";
   pvd << "  </Collection>\n</VTKFile>\n";
-  if (!pvd) throw InputError((out_ / "fields.pvd").string() + ": cannot write");
+  file.commit();
 }
 
 }  // namespace cdyn

@@ -33,9 +33,16 @@ Field parse_expression(const std::string& text, const std::string& key) {
   } catch (const mu::Parser::exception_type& err) {
     throw InputError(key + ": bad expression '" + text + "': " + err.GetMsg());
   }
-  return [e](double x, double y, double t) {
+  // muParser can also fail while evaluating (a compiled expression whose stack
+  // evaluation it refuses); that too is the text's fault, reported as bad input with
+  // the key, never as a foreign exception type escaping to the caller.
+  return [e, text, key](double x, double y, double t) {
     e->x = x, e->y = y, e->t = t;
-    return e->parser.Eval();
+    try {
+      return e->parser.Eval();
+    } catch (const mu::Parser::exception_type& err) {
+      throw InputError(key + ": bad expression '" + text + "': " + err.GetMsg());
+    }
   };
 }
 

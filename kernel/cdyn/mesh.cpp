@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <map>
 
 #include "cdyn/error.hpp"
@@ -93,7 +95,10 @@ void Mesh::check(const std::string& source) const {
 
 Mesh interval_mesh(int n, double length) {
   if (n < 1) throw InputError("mesh.n: the interval needs at least one cell");
-  if (!(length > 0.0)) throw InputError("mesh.length: must be positive");
+  // (isfinite: an infinite length would give the vertices inf·0 = NaN)
+  if (!(length > 0.0) || !std::isfinite(length)) throw InputError("mesh.length: must be positive and finite");
+  // vertex indices are ints
+  if (n >= std::numeric_limits<int>::max()) throw InputError("mesh.n: too many cells (" + std::to_string(n) + ")");
   Mesh m;
   m.dim = 1;
   for (int i = 0; i <= n; ++i) m.vertices.push_back({length * i / n, 0.0});
@@ -105,6 +110,10 @@ Mesh interval_mesh(int n, double length) {
 
 Mesh unit_square_mesh(int n, double lx, double ly) {
   if (n < 1) throw InputError("mesh.n: the square needs at least one cell per side");
+  // (n + 1)² vertices and 2n² cells are indexed by int: refuse n where that overflows
+  if (n > 46339) throw InputError("mesh.n: too many cells per side (" + std::to_string(n) + "; at most 46339)");
+  if (!(lx > 0.0 && ly > 0.0) || !std::isfinite(lx) || !std::isfinite(ly))
+    throw InputError("unit_square_mesh: the side lengths must be positive and finite");
   Mesh m;
   m.dim = 2;
   auto v = [n](int i, int j) { return i + j * (n + 1); };
