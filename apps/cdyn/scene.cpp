@@ -31,6 +31,7 @@ const std::set<std::string> kKnownKeys = {
     "time.scheme",    "time.dt",        "time.T",
     "time.beta",      "time.gamma",     "time.restitution",
     "solver.name",    "solver.tol",     "solver.max_iterations",
+    "solver.condense", "solver.cg_iterations",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
 };

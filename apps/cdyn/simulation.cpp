@@ -301,6 +301,8 @@ Simulation make_simulation(const Scene& s) {
   sim.tol = options.tol = s.number("solver.tol", 1e-10);
   if (!(options.tol > 0.0)) throw InputError("solver.tol: must be positive");
   options.max_iterations = s.integer("solver.max_iterations", 0);
+  options.pdas_cg_iterations = s.integer("solver.cg_iterations", options.pdas_cg_iterations);
+  if (options.pdas_cg_iterations < 0) throw InputError("solver.cg_iterations: must be 0 (no CG) or more");
   try {
     sim.solver = make_step_solver(sim.solver_name, options);
   } catch (const InputError& e) {
@@ -310,6 +312,7 @@ Simulation make_simulation(const Scene& s) {
   parameters.beta = s.number("time.beta", parameters.beta);
   parameters.gamma = s.number("time.gamma", parameters.gamma);
   parameters.restitution = s.number("time.restitution", parameters.restitution);
+  parameters.condense = s.boolean("solver.condense", parameters.condense);
   sim.scheme = make_time_scheme(sim.scheme_name, p, *sim.solver, sim.dt, parameters);
 
   // Initial state: U⁰ must lie in K̄^h; V⁰ from C V⁰ = B U̇⁰.

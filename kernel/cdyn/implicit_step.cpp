@@ -74,6 +74,7 @@ Eigen::VectorXd ImplicitStep::solve(const Eigen::VectorXd& r, State& s, StepStat
   stats.qp_seconds = last_.seconds;
   stats.active = static_cast<int>(last_.active.size());
   stats.kkt_residual = last_.kkt_residual;
+  stats.converged = last_.converged;
   if (!condensation_) {
     s.reaction = last_.reaction;
     return last_.X;

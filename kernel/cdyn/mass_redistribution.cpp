@@ -99,9 +99,13 @@ SparseMatrix redistribution_operator(const FESpace& W, const DirichletLift& bc,
       found = true;
     }
     if (!found)
-      throw InputError("mass redistributed: no non-contact free vertices near contact vertex " + std::to_string(s) +
-                       " to carry its mass (every free vertex in contact? redistribution is for a contact "
-                       "boundary; use a pair such as P1+/P0 for a volume obstacle)");
+      throw InputError("mass redistributed: contact vertex " + std::to_string(s) +
+                       (donors.empty() ? std::string(" has no non-contact free vertices near it to carry its mass "
+                                                     "(every free vertex in contact? redistribution is for a contact "
+                                                     "boundary; use a pair such as P1+/P0 for a volume obstacle)")
+                                       : std::string(" has no affinely independent donors near it (the non-contact free "
+                                                     "vertices all lie on one line, e.g. a body one cell thick; use a "
+                                                     "pair such as P1+/P0)")));
   }
   SparseMatrix T(n, n);
   T.setFromTriplets(t.begin(), t.end());

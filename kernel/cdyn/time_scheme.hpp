@@ -29,6 +29,12 @@ struct StepStats {
   double qp_seconds = 0.0;
   int active = 0;             // constraints active at the step's QP solution
   double kkt_residual = 0.0;
+  // False when the step QP stopped above its tolerance.  That only returns when the
+  // solver was built with QPOptions::throw_on_failure = false (a caller that wants to
+  // look at the failing step: benchmarks, solver studies); by default the failure
+  // throws NumericalError and a scheme never hands back an unconverged step.  A
+  // caller that opts out must check this flag (docs/stability.md, "Solver stress").
+  bool converged = true;
 };
 
 // The discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU (seed, Theorem 2), split in its parts.

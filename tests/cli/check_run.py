@@ -103,6 +103,19 @@ assert list(rows[0])[:8] == "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s"
 rerun_rows, rerun, _ = run(os.path.join(work, "run_rerun"), scene=os.path.join(out, "scene.toml"))
 assert rerun["n_dofs"] == s["n_dofs"] and rerun["n_steps"] == s["n_steps"] and rerun["E_final"] == s["E_final"]
 
+# Every step QP was solved: the largest KKT residual is within the scene's tolerance.
+assert 0 <= s["kkt_residual_max"] <= s["solver_tol"], (s["kkt_residual_max"], s["solver_tol"])
+
+# solver.condense = false (the bubbles kept in the step QP) and solver.cg_iterations = 0
+# (pdas without CG) solve the same steps another way: the same energies, to the
+# round-off that the midpoint scheme carries forward (test_condensation.cpp measures
+# 4e-11 relative over its loops; 1e-9 leaves room on this longer run).
+for variant in ["solver.condense=false", "solver.cg_iterations=0"]:
+    v_rows, v, _ = run(os.path.join(work, "run_" + variant.split("=")[0]), f"mesh.n={n}", "time.T=0.05",
+                       "time.dt=0.001", "output.fields=false", "output.plots=false", variant)
+    for a, b in zip(rows, v_rows):
+        assert abs(float(a["E_total"]) - float(b["E_total"])) <= 1e-9 * abs(s["E0"]), (variant, a["step"])
+
 out = os.path.join(work, "run_backward_euler")
 rows, s, _ = run(out, f"mesh.n={n}", "time.T=0.1", "time.dt=0.002", "time.scheme=backward_euler",
                  "output.fields=false", "output.plots=false")

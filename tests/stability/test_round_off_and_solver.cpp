@@ -61,6 +61,7 @@ void step_to_first_contact(const QPOptions& options, bool expect_throw) {
     try {
       const StepStats st = scheme->step(s);
       if (!expect_throw && st.kkt_residual > options.tol) {
+        EXPECT_FALSE(st.converged) << "a step above tol must say so";
         std::printf("throw_on_failure = false: step %d returned with KKT residual %.3e > tol %.0e after %d iterations\n",
                     n, st.kkt_residual, options.tol, st.qp_iterations);
         return;
