@@ -33,8 +33,7 @@
 #include <string>
 
 #include "cdyn/qp_pdas.hpp"
-#include "cdyn/scalar_wave.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "seed_membrane.hpp"
 
 namespace {
 
@@ -48,29 +47,7 @@ int mesh_n() {
   return s ? std::atoi(s) : 160;
 }
 
-// The membrane of data/scenes/membrane.toml, with or without its obstacle.
-struct Membrane {
-  Mesh mesh;
-  ConstrainedProblem p;
-  Membrane(int n, bool obstacle) : mesh(unit_square_mesh(n)) {
-    ScalarWaveData d;
-    d.displacement = Element::P1Bubble;
-    d.velocity = "P0";
-    d.f = [](double, double, double) { return -0.6; };
-    d.dirichlet_parts = {mesh.part_index("bottom"), mesh.part_index("right"), mesh.part_index("top"),
-                         mesh.part_index("left")};
-    d.dirichlet_value = [](double, double, double) { return 0.02; };
-    d.obstacle = obstacle;
-    d.obstacle_g = [](double, double, double) { return 0.0; };
-    p = build_scalar_wave(mesh, d);
-  }
-  State initial() const {
-    State s;
-    s.U = p.unknowns(p.W->interpolate([](double, double, double) { return 0.02; }));
-    s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
-    return s;
-  }
-};
+using Membrane = bench::SeedMembrane;
 
 const Membrane& membrane(int n, bool obstacle) {
   static std::map<std::pair<int, bool>, std::unique_ptr<Membrane>> cache;

@@ -19,8 +19,7 @@
 #include <memory>
 
 #include "cdyn/qp_pdas.hpp"
-#include "cdyn/scalar_wave.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "seed_membrane.hpp"
 
 namespace {
 
@@ -48,21 +47,11 @@ const std::vector<BoundQP>& steps(int n) {
   static std::map<int, std::vector<BoundQP>> cache;
   auto& q = cache[n];
   if (!q.empty()) return q;
-  const Mesh mesh = unit_square_mesh(n);
-  ScalarWaveData d;
-  d.displacement = Element::P1Bubble;
-  d.velocity = "P0";
-  d.f = [](double, double, double) { return -0.6; };
-  d.dirichlet_parts = {mesh.part_index("bottom"), mesh.part_index("right"), mesh.part_index("top"),
-                       mesh.part_index("left")};
-  d.dirichlet_value = [](double, double, double) { return 0.02; };
-  d.obstacle_g = [](double, double, double) { return 0.0; };
-  const ConstrainedProblem p = build_scalar_wave(mesh, d);
+  const bench::SeedMembrane m(n, true);
+  const ConstrainedProblem& p = m.p;
   Recorder rec;
   auto scheme = make_time_scheme("midpoint", p, rec, 1e-3);
-  State s;
-  s.U = p.unknowns(p.W->interpolate([](double, double, double) { return 0.02; }));
-  s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
+  State s = m.initial();
   for (int k = 0; k < kLast; ++k) scheme->step(s);
   q = std::move(rec.qps);
   return q;
