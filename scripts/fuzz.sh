@@ -24,7 +24,18 @@ build=${BUILD_DIR:-$root/build-fuzz}
 jobs=${JOBS:-$(nproc)}
 corpus_root=${CORPUS_DIR:-$build/corpus}
 
-command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 2; }
+# clang and its libFuzzer runtime are not needed by the build or the tests, so
+# scripts/setup.sh leaves them out; this script installs them when missing (Debian 12).
+missing=()
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO=sudo
+  echo "fuzz.sh: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" \
       -DCDYN_SANITIZE=ON -DCDYN_FUZZ=ON -DCDYN_EXAMPLES=OFF >/dev/null
