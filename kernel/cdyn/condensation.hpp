@@ -44,7 +44,9 @@ class DiagonalCondensation {
   int n_condensed() const { return static_cast<int>(condensed_.size()); }
   bool condenses(int i) const { return kept_of_[i] < 0; }
 
-  // S_c = S_vv − S_vb S_bb⁻¹ S_bv (symmetric, both triangles, compressed).
+  // The full S it was built from, and S_c = S_vv − S_vb S_bb⁻¹ S_bv (symmetric, both
+  // triangles, compressed).
+  const SparseMatrix& S() const { return S_; }
   const SparseMatrix& S_c() const { return S_c_; }
   // x_v: the kept entries of a vector on all unknowns (bounds, a warm start).
   Eigen::VectorXd kept(const Eigen::VectorXd& x) const;

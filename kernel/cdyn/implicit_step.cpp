@@ -30,8 +30,7 @@ ImplicitStep::ImplicitStep(const ConstrainedProblem& p, StepSolver& solver, doub
   if (!condense) return;
   DiagonalCondensation c(qp_.S, p.lower, p.upper);
   if (c.n_condensed() == 0) return;
-  S_ = std::move(qp_.S);
-  qp_.S = c.S_c();
+  qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
   qp_.lower = c.kept(p.lower);
   qp_.upper = c.kept(p.upper);
   condensation_.emplace(std::move(c));
@@ -58,7 +57,7 @@ void ImplicitStep::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorX
     }
     // a condensed unknown is bounded now: back to the full QP (the warm start's indices
     // were those of the condensed one)
-    qp_.S = std::move(S_);
+    qp_.S = condensation_->S();
     condensation_.reset();
     has_last_ = false;
   }

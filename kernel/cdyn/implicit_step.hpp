@@ -49,7 +49,6 @@ class ImplicitStep : public TimeScheme {
  private:
   std::optional<SparseMatrix> M_;
   std::optional<DiagonalCondensation> condensation_;
-  SparseMatrix S_;   // the full S when condensed (qp_.S is S_c then)
   BoundQP qp_;
   QPResult last_;
   bool has_last_ = false;
