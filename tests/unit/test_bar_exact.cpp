@@ -51,11 +51,9 @@ struct Case {
   std::function<double(double)> u0, v0;    // the initial data as stated in the problem
 };
 
-Case clamped_case(const ClampedBarImpact& b, const std::string& name) {
-  Case k;
-  k.name = name, k.E = b.E, k.rho = b.rho, k.L = b.L, k.c = b.wave_speed();
-  k.clamped = true, k.g = 0.0, k.T = 2.0 * b.period();
-  k.scale_u = b.delta, k.scale_v = b.delta * k.c / b.L, k.energy0 = b.energy(0.0);
+// The fields both exact solutions provide under the same names (bar_exact.hpp).
+template <class Bar>
+void set_exact_fields(Case& k, const Bar& b) {
   k.u = [b](double x, double t) { return b.displacement(x, t); };
   k.v = [b](double x, double t) { return b.velocity(x, t); };
   k.eps = [b](double x, double t) { return b.strain(x, t); };
@@ -63,6 +61,14 @@ Case clamped_case(const ClampedBarImpact& b, const std::string& name) {
   k.impulse = [b](double t) { return b.contact_impulse(t); };
   k.kinetic = [b](double t) { return b.kinetic_energy(t); };
   k.elastic = [b](double t) { return b.elastic_energy(t); };
+}
+
+Case clamped_case(const ClampedBarImpact& b, const std::string& name) {
+  Case k;
+  k.name = name, k.E = b.E, k.rho = b.rho, k.L = b.L, k.c = b.wave_speed();
+  k.clamped = true, k.g = 0.0, k.T = 2.0 * b.period();
+  k.scale_u = b.delta, k.scale_v = b.delta * k.c / b.L, k.energy0 = b.energy(0.0);
+  set_exact_fields(k, b);
   k.in_contact = [b](double t) {
     const double s = t - b.period() * std::floor(t / b.period());
     return s > b.contact_begins() && s < b.contact_ends();
@@ -77,13 +83,7 @@ Case falling_case(const FallingBar& b, const std::string& name) {
   k.name = name, k.E = b.E, k.rho = b.rho, k.L = b.L, k.c = b.wave_speed();
   k.clamped = false, k.g = -b.d, k.T = b.contact_ends() + b.L / k.c;
   k.scale_u = b.d + b.v0 * b.L / k.c, k.scale_v = b.v0, k.energy0 = b.energy(0.0);
-  k.u = [b](double x, double t) { return b.displacement(x, t); };
-  k.v = [b](double x, double t) { return b.velocity(x, t); };
-  k.eps = [b](double x, double t) { return b.strain(x, t); };
-  k.R = [b](double t) { return b.contact_force(t); };
-  k.impulse = [b](double t) { return b.contact_impulse(t); };
-  k.kinetic = [b](double t) { return b.kinetic_energy(t); };
-  k.elastic = [b](double t) { return b.elastic_energy(t); };
+  set_exact_fields(k, b);
   k.in_contact = [b](double t) { return t > b.contact_begins() && t < b.contact_ends(); };
   k.u0 = [](double) { return 0.0; };
   k.v0 = [b](double) { return -b.v0; };

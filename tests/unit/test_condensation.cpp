@@ -41,7 +41,9 @@ TEST(Condensation, PicksExactlyTheBubblesOfP1PlusP0WithoutFill) {
   EXPECT_EQ(c.n_condensed(), mesh.n_cells());
   EXPECT_EQ(c.n_kept(), 7 * 7);
   for (int i = 0; i < p.n_free(); ++i)
-    if (c.condenses(i)) EXPECT_FALSE(std::isfinite(p.lower[i]));  // never a constrained unknown
+    if (c.condenses(i)) {
+      EXPECT_FALSE(std::isfinite(p.lower[i]));  // never a constrained unknown
+    }
   // No fill: S_c has the pattern of S_vv.
   EXPECT_EQ(c.S_c().nonZeros(), kept_block_nonzeros(S, c));
 
