@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include "cdyn/elastic_contact.hpp"
 #include "cdyn/error.hpp"
@@ -92,6 +93,11 @@ void ImpactMonitor::observe(const Snapshot& now, int active, double contact_forc
     t_last_ = now.t;
     ++contact_steps_;
     after_ = Snapshot{};  // not released yet
+    // The force's moments about t_first (t − t_first is small: no cancellation in σ²).
+    const double tau = now.t - t_first_;
+    force_sum_ += contact_force;
+    force_tau_ += contact_force * tau;
+    force_tau2_ += contact_force * tau * tau;
   } else if (first_ >= 0 && after_.step < 0) {
     after_ = now;
   }
@@ -130,6 +136,23 @@ nlohmann::ordered_json ImpactMonitor::summary(double dt) const {
   j["contact_steps"] = contact_steps_;
   j["peak_force"] = peak_;
   j["t_peak_force"] = t_peak_;
+  // The smooth functionals of the force history F(t) (one value per step, the step's
+  // mean force, placed at the step's midpoint t − dt/2): the impulse I = ∫F dt, the
+  // centroid t̄ = ∫F t dt / I and the width σ = (∫F (t − t̄)² dt / I)^½.  A half-sine
+  // pulse F̂ sin(π(t − t0)/T) has σ = T (1/12 − 1/(2π²))^½ and I = 2F̂T/π, hence the
+  // half-sine equivalents T_hs = σ / (1/12 − 1/(2π²))^½ and F_hs = πI / (2T_hs): they
+  // converge under refinement where the raw duration and peak jump with the waves
+  // (docs/experiments.md, "The falling disk").
+  const double impulse = force_sum_ * dt;
+  const double tau_bar = force_sum_ > 0.0 ? force_tau_ / force_sum_ : 0.0;
+  const double sigma = force_sum_ > 0.0 ? std::sqrt(std::max(0.0, force_tau2_ / force_sum_ - tau_bar * tau_bar)) : 0.0;
+  const double half_sine_ratio = std::sqrt(1.0 / 12.0 - 1.0 / (2.0 * std::numbers::pi * std::numbers::pi));
+  const double T_hs = sigma / half_sine_ratio;
+  j["impulse"] = impulse;
+  j["t_force_centroid"] = t_first_ + tau_bar - 0.5 * dt;
+  j["force_width"] = sigma;
+  j["half_sine_duration"] = T_hs;
+  j["half_sine_peak_force"] = T_hs > 0.0 ? std::numbers::pi * impulse / (2.0 * T_hs) : 0.0;
   j["before"] = snapshot_json(before_);
   j["after"] = snapshot_json(after_);
   return j;

@@ -80,7 +80,8 @@ class ContactHistory {
 // contact starts within the first step and ends within the one after the last, so the
 // estimate is good to ± dt), the peak total contact force and when, and the energy and
 // momentum just before (the step before the first contact) and just after (the first
-// step without contact after the last one; null while still in contact at T).
+// step without contact after the last one; null while still in contact at T), and the
+// impulse, centroid and width of the force history with their half-sine equivalents.
 class ImpactMonitor {
  public:
   struct Snapshot {
@@ -95,6 +96,7 @@ class ImpactMonitor {
   Snapshot previous_, before_, after_;
   int first_ = -1, last_ = -1, contact_steps_ = 0;
   double t_first_ = 0, t_last_ = 0, peak_ = 0, t_peak_ = 0;
+  double force_sum_ = 0, force_tau_ = 0, force_tau2_ = 0;  // Σ F, Σ F τ, Σ F τ², τ = t − t_first
 };
 
 }  // namespace cdyn::app

@@ -11,6 +11,9 @@ The disk (data/scenes/disk.toml, P1+/P0, midpoint, 1000 steps of 10 µs):
     to round-off, DESIGN.md §1), both to 1e-10 relative;
   - contact.csv's forces add up to history.csv's contact_force, and the impact
     summary's "before" state is the last free-flight row;
+  - the impulse I = Σ F dt of summary.json is the change in momentum plus gravity's
+    share m g Δt (an identity of the scheme, to 1e-9), and its force centroid and width
+    are those of history.csv's contact_force column;
   - the disk rebounds (upward momentum after the contact) and J after the release is J0
     to 1e-3 (Theorem 2 conserves J for the semi-discrete problem under condition (12);
     the scheme's identity J^{n+1} − Jⁿ = δUᵀGᵀλ leaves an O(dt) contact work, measured
@@ -37,47 +40,23 @@ far below a), and the nodal pressures follow Hertz's ellipse to 2 % of its peak;
 the release the contact opens.
 Only the standard library is used.
 """
-import csv
-import json
 import math
 import os
-import re
 import subprocess
 import sys
 
+from elastic_runs import QUIET, area as mesh_area, check, failures, run as run_scene
+
 cdyn, src, work = sys.argv[1:4]
 scenes = os.path.join(src, "data", "scenes")
-quiet = ["--quiet", "--set", "output.fields=false", "--set", "output.plots=false"]
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
 
 
 def run(scene, out, *sets):
-    out = os.path.join(work, out)
-    args = [cdyn, "run", os.path.join(scenes, scene), "--out", out] + quiet
-    for s in sets:
-        args += ["--set", s]
-    subprocess.run(args, check=True)
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
-    with open(os.path.join(out, "history.csv"), newline="") as f:
-        history = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    contact = []
-    if os.path.isfile(os.path.join(out, "contact.csv")):
-        with open(os.path.join(out, "contact.csv"), newline="") as f:
-            contact = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
-    return summary, history, contact
+    return run_scene(cdyn, os.path.join(scenes, scene), os.path.join(work, out), *sets)
 
 
 def area(geo):
-    text = subprocess.run([cdyn, "mesh", os.path.join(src, "data", "geo", geo)], check=True,
-                          stdout=subprocess.PIPE, text=True).stdout
-    return float(re.search(r"area\s+([0-9.eE+-]+)", text).group(1))
+    return mesh_area(cdyn, os.path.join(src, "data", "geo", geo))
 
 
 # --- the disk, P1+/P0, midpoint -------------------------------------------------------
@@ -102,6 +81,23 @@ after = impact["after"]
 check(after is not None and after["momentum"][1] > 0, "the disk rebounds (upward momentum after the contact)")
 rel = abs(after["E"] / s["E0"] - 1)
 check(rel < 1e-3 and s["E_rel_drift"] < 1e-2, f"P1+/P0 midpoint: |J_after/J0 - 1| = {rel:.1e}, max drift {s['E_rel_drift']:.1e}")
+# Impulse and momentum: the midpoint step is M(V^{n+1} − Vⁿ) = dt(F^{n+½} − K U^{n+½})
+# + Gᵀλ, and the translation T_y is orthogonal to K (a rigid motion) so P_y changes by
+# the step's contact force times dt plus −m g dt; summed over the impact,
+#     P_y(after) − P_y(before) = I − m g (t_after − t_before),   I = Σ F_k dt,
+# an identity up to the round-off of 600 steps (measured 4e-11 of the change in P_y).
+dP = after["momentum"][1] - impact["before"]["momentum"][1]
+err_I = abs(dP - (impact["impulse"] - m * g * (after["t"] - impact["before"]["t"]))) / abs(dP)
+check(err_I < 1e-9, f"impulse = change in momentum + gravity's share ({err_I:.1e})")
+# The centroid and width of the force history from history.csv's contact_force (the
+# step's mean force at the step's midpoint), against summary.json's.
+dt = s["dt"]
+F = [(r["t"] - dt / 2, r["contact_force"]) for r in h if r["contact_force"] > 0]
+F0 = sum(f for _, f in F)
+tbar = sum(t * f for t, f in F) / F0
+sigma = math.sqrt(sum((t - tbar) ** 2 * f for t, f in F) / F0)
+err_m = max(abs(tbar - impact["t_force_centroid"]) / impact["force_width"], abs(sigma / impact["force_width"] - 1))
+check(err_m < 1e-9, f"force centroid {1e3 * tbar:.4f} ms and width {1e3 * sigma:.4f} ms as in summary.json ({err_m:.1e})")
 print(f"     contact duration {impact['contact_duration']:.6g} s, peak force {impact['peak_force']:.6g} N/mm, "
       f"momentum before {impact['before']['momentum'][1]:.6g} after {after['momentum'][1]:.6g}")
 s, _, _ = run("disk.toml", "disk_consistent", "method.mass=consistent")
@@ -133,7 +129,7 @@ for pair in ("P1+/P0", "P2/P1", "P1+/P1"):
 s, _, _ = run("beam.toml", "beam_consistent", "method.mass=consistent")
 check(s["E_final"] / s["E0"] > 2, f"beam consistent mass: J(T)/J0 = {s['E_final'] / s['E0']:.3g}")
 bad = subprocess.run([cdyn, "run", os.path.join(scenes, "beam.toml"), "--out", os.path.join(work, "beam_redistributed")]
-                     + quiet + ["--set", "method.mass=redistributed"], stderr=subprocess.PIPE, text=True)
+                     + QUIET + ["--set", "method.mass=redistributed"], stderr=subprocess.PIPE, text=True)
 check(bad.returncode == 2 and "redistributed" in bad.stderr and "affinely independent" in bad.stderr, "beam one cell thick: the redistributed mass is refused (exit 2)")
 two = os.path.join(src, "data", "geo", "beam_two_cells.geo")
 s, _, _ = run("beam.toml", "beam_redistributed_two", "method.mass=redistributed", "mesh.file=" + two)
