@@ -16,7 +16,9 @@
 // before the window untimed, and times the window (manual time: seconds per step).
 // Counters per step: qp_ms (the solver's share), iters (pdas linear solves), factor
 // (numeric factorizations), rowupd (CHOLMOD row updates), cg (CG solves), cg_it/cg (CG
-// iterations per CG solve), max_active; unknowns counts the free dofs before condensation.
+// iterations per CG solve), max_active; unknowns counts the free dofs before condensation;
+// fact_ms, upd_ms, solve_ms, cg_ms: the solver's milliseconds per step in factorizations,
+// row updates, forward/back solves and CG (PDASSolver::Counters): where the time goes.
 //
 // After the table it prints the ratios contact/linear (target ≤ 1.5, issue 9).
 // Run (Release build):
@@ -65,6 +67,7 @@ void window(benchmark::State& state, bool obstacle, bool condense, int cg_iterat
   opt.tol = 1e-12;  // the scene's solver.tol
   opt.pdas_cg_iterations = cg_iterations;
   double qp = 0, total = 0, iters = 0, factor = 0, rowupd = 0, cg = 0, cgit = 0;
+  double factor_s = 0, rowupd_s = 0, solve_s = 0, cg_s = 0;
   int max_active = 0, runs = 0;
   for (auto _ : state) {
     PDASSolver solver(opt);
@@ -88,6 +91,10 @@ void window(benchmark::State& state, bool obstacle, bool condense, int cg_iterat
     rowupd += solver.counters().row_updates - c0.row_updates;
     cg += solver.counters().cg_solves - c0.cg_solves;
     cgit += solver.counters().cg_iterations - c0.cg_iterations;
+    factor_s += solver.counters().factorization_s - c0.factorization_s;
+    rowupd_s += solver.counters().row_update_s - c0.row_update_s;
+    solve_s += solver.counters().solve_s - c0.solve_s;
+    cg_s += solver.counters().cg_s - c0.cg_s;
     ++runs;
   }
   const double steps = static_cast<double>(runs) * kWindow;
@@ -99,6 +106,10 @@ void window(benchmark::State& state, bool obstacle, bool condense, int cg_iterat
   state.counters["max_active"] = max_active;
   state.counters["cg"] = cg / steps;
   state.counters["cg_it/cg"] = cg > 0 ? cgit / cg : 0.0;
+  state.counters["fact_ms"] = 1e3 * factor_s / steps;
+  state.counters["upd_ms"] = 1e3 * rowupd_s / steps;
+  state.counters["solve_ms"] = 1e3 * solve_s / steps;
+  state.counters["cg_ms"] = 1e3 * cg_s / steps;
   auto& acc = g_window[std::string(obstacle ? "contact" : "linear") + (condense ? "/condensed" : "/full") +
                        (obstacle && cg_iterations == 0 ? "/no-cg" : "")];
   acc.first += total;

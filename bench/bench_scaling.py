@@ -4,14 +4,18 @@
 The seed's membrane (data/scenes/membrane.toml: P1+/P0, midpoint, dt = 0.001) for
 n = 40 … 640, each a whole `cdyn run` under /usr/bin/time -v: the time per step is the
 time loop's (summary.json s_per_step, its QP part qp_s_per_step), the peak memory the
-process's maximum resident set.  Two windows per n: `free` = the first 20 steps (no
-contact yet: one forward/back solve per step) and, with --contact, steps 1–270, which
-contain the impact at t ≈ 0.258 (long at n ≥ 320).  Prints a table and the least-squares
-exponent p of time/step ∝ N^p over the sizes (target p ≤ 1.2), with N the free dofs.
+process's maximum resident set.  Two windows per n: by default the first 20 steps (no
+contact yet: one forward/back solve per step, the floor of a step), and with --steps 270
+the steps 1–270, which contain the impact at t ≈ 0.258: then the table adds the QP time
+per step over the steps with an active constraint (history.csv's solve_s where
+active > 0: PDAS iterations, CG solves, row updates and refactorizations as the contact
+zone grows).  Prints a table and the least-squares exponent p of time/step ∝ N^p over
+the sizes (target p ≤ 1.2), with N the free dofs.
 
 Usage:  /usr/bin/python3 bench/bench_scaling.py BUILD/apps/cdyn [WORKDIR] [--n 40,80,160,320,640] [--steps 20]
 """
 import argparse
+import csv
 import json
 import math
 import os
@@ -34,7 +38,9 @@ def run(cdyn, n, steps, work):
     wall_s = sum(v * 60 ** (len(parts) - 1 - i) for i, v in enumerate(parts))
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
-    return s, rss, wall_s
+    with open(os.path.join(out, "history.csv"), newline="") as f:
+        contact = [float(r["solve_s"]) for r in csv.DictReader(f) if int(r["active"]) > 0]
+    return s, rss, wall_s, contact
 
 
 def fit(points):
@@ -53,17 +59,24 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     print(f"load average at start: {os.getloadavg()[0]:.2f}")
-    print(f"| n | free dofs | steps | s/step | QP s/step | whole process (s) | peak RSS (MB) |")
-    print("|---|---|---|---|---|---|---|")
-    points, qpoints = [], []
+    print(f"| n | free dofs | steps | s/step | QP s/step | contact steps | QP s/step in contact | whole process (s) | peak RSS (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    points, qpoints, cpoints = [], [], []
     for n in [int(v) for v in a.n.split(",")]:
-        s, rss, wall = run(a.cdyn, n, a.steps, a.work)
+        s, rss, wall, contact = run(a.cdyn, n, a.steps, a.work)
         points.append((s["n_free"], s["s_per_step"]))
         qpoints.append((s["n_free"], s["qp_s_per_step"]))
+        in_contact = "—"
+        if contact:
+            cpoints.append((s["n_free"], sum(contact) / len(contact)))
+            in_contact = f"{cpoints[-1][1] * 1e3:.2f} ms"
         print(f"| {n} | {s['n_free']} | {s['n_steps']} | {s['s_per_step'] * 1e3:.2f} ms | "
-              f"{s['qp_s_per_step'] * 1e3:.2f} ms | {wall:.1f} | {rss / 1024:.0f} |", flush=True)
+              f"{s['qp_s_per_step'] * 1e3:.2f} ms | {len(contact)} | {in_contact} | {wall:.1f} | {rss / 1024:.0f} |",
+              flush=True)
     if len(points) >= 2:
         print(f"fitted exponent: time/step ~ N^{fit(points):.2f} (QP part N^{fit(qpoints):.2f}); target <= 1.2")
+    if len(cpoints) >= 2:
+        print(f"fitted exponent of the QP time per contact step: N^{fit(cpoints):.2f}")
     print(f"load average at end: {os.getloadavg()[0]:.2f}")
     return 0
 

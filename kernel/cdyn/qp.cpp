@@ -375,6 +375,8 @@ void SparseCholesky::replace_by_identity(int i) {
   m.check("rowdel");
 }
 
+double SparseCholesky::modification_flops() const { return impl_->common.modfl; }
+
 bool SparseCholesky::restore(int i, const SparseMatrix& S, const std::vector<char>& keep) {
   Impl& m = *impl_;
   const int n = static_cast<int>(S.rows());

@@ -71,13 +71,15 @@ struct QPOptions {
   int pdas_update_limit = -1;
   // pdas, explicit S: solve a system whose active set differs from the factorized one by
   // Jacobi-preconditioned conjugate gradients on S̃ (at most this many iterations; 0: never)
-  // before touching the factor.  Pays when S̃ is well conditioned — the step matrix of
-  // P1+/P0 with the bubbles condensed (condition O(1), ≈ 45 iterations to 1e-14 at any
-  // n, docs/performance.md) — and gives up at the cap otherwise (then never again for
-  // this S).  The factor is brought to the current active set by `pdas_cg_resync`
-  // CG iterations in total since it was last (re)made.
+  // before touching the factor, when that is cheaper than the row updates (flop counts,
+  // qp_pdas.cpp cg_pays).  Pays when S̃ is well conditioned — the step matrix of P1+/P0
+  // with the bubbles condensed (condition O(1), ≈ 40 iterations to 1e-14 at any n,
+  // docs/performance.md) — and gives up at the cap otherwise (then never again for this
+  // S).  The factor is brought to the current active set once that set has settled
+  // (three solves in a row) or, if pdas_cg_resync ≥ 0, after that many CG iterations
+  // since it was last (re)made.
   int pdas_cg_iterations = 80;
-  int pdas_cg_resync = 600;
+  int pdas_cg_resync = -1;
   double pgs_omega = 1.0;      // pgs: over-relaxation factor, 0 < ω < 2
   int pgs_check_every = 10;    // pgs: sweeps between two evaluations of the KKT residual
   bool ipopt_crossover = true;  // ipopt: finish by PDAS steps from Ipopt's active set if above tol
@@ -173,6 +175,9 @@ class SparseCholesky {
   // Row and column i, identity before, become column i of S restricted to the rows with
   // keep[row] != 0 (keep[i] != 0).  Returns false if the result is not positive definite.
   bool restore(int i, const SparseMatrix& S, const std::vector<char>& keep);
+  // Floating-point operations of the last replace_by_identity() or restore(), as CHOLMOD
+  // counts them (cholmod_common::modfl): what PDAS weighs against a CG solve.
+  double modification_flops() const;
 
  private:
   struct Impl;

@@ -43,6 +43,17 @@ bool has_diagonal(const SparseMatrix& M, int n) {
   return true;
 }
 
+// Adds the wall time of its scope to a counter (PDASSolver::Counters' *_s).
+class ScopeTimer {
+ public:
+  explicit ScopeTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
+  ~ScopeTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& seconds_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 // State of an unknown: free, or held at its lower or upper bound.
 constexpr signed char kFree = 0, kLower = -1, kUpper = 1;
 
@@ -64,7 +75,13 @@ struct PDASSolver::Impl {
   bool cg_failed = false;             // CG did not converge once for this S: not tried again
   std::vector<char> cg_active;
   int cg_since_sync = 0;              // CG iterations since the factor was last (re)made
+  int cg_mode_uses = 0;               // solves in a row with cg_active (resync_due)
+  Eigen::VectorXd y_last;             // the last solution of solve_tilde: CG's first guess
   Eigen::VectorXd S_diagonal;
+  // What the two ways to a new active set have cost so far on this pattern (flops as
+  // CHOLMOD counts them for a row update; CG iterations), for cg_pays().
+  double update_flops = 0.0;
+  int updates_measured = 0;
 
   // saddle form
   bool saddle = false;
@@ -92,8 +109,11 @@ struct PDASSolver::Impl {
       if (!chol.analyzed_for(S)) {
         chol.analyze(S);
         ++counters.analyses;
+        update_flops = 0.0;
+        updates_measured = 0;
       }
       S_tilde = S;
+      ScopeTimer timer(counters.factorization_s);
       const int minor = chol.factorize(S);
       ++counters.factorizations;
       if (minor >= 0)
@@ -141,6 +161,7 @@ struct PDASSolver::Impl {
 
   void refactorize(const std::vector<char>& active) {
     eliminate(S, active, S_tilde);
+    ScopeTimer timer(counters.factorization_s);
     const int minor = chol.factorize(S_tilde);
     ++counters.factorizations;
     if (minor >= 0)
@@ -160,10 +181,11 @@ struct PDASSolver::Impl {
       if (active[i] != factor_active[i]) (active[i] ? to_delete : to_add).push_back(i);
     const int changes = static_cast<int>(to_delete.size() + to_add.size());
     if (changes == 0) return;
-    const int limit = opt.pdas_update_limit >= 0 ? opt.pdas_update_limit : std::max(300, n / 100);
-    if (changes > limit) return refactorize(active);
+    if (changes > update_limit()) return refactorize(active);
+    ScopeTimer timer(counters.row_update_s);
     for (int i : to_delete) {
       chol.replace_by_identity(i);
+      update_flops += chol.modification_flops();
       factor_active[i] = 1;
     }
     std::vector<char> keep(n);
@@ -171,8 +193,10 @@ struct PDASSolver::Impl {
     for (int i : to_add) {
       keep[i] = 1;
       if (!chol.restore(i, S, keep)) return refactorize(active);  // round-off: start afresh
+      update_flops += chol.modification_flops();
       factor_active[i] = 0;
     }
+    updates_measured += changes;
     counters.row_updates += changes;
     updates_since_factorization += changes;
     cg_since_sync = 0;
@@ -183,7 +207,7 @@ struct PDASSolver::Impl {
     Eigen::VectorXd z = y;
     for (int i = 0; i < n; ++i)
       if (a[i]) z[i] = 0.0;
-    Eigen::VectorXd w = S * z;
+    Eigen::VectorXd w = S.transpose() * z;  // = S z (S symmetric): a gather per row, faster than the column scatter
     for (int i = 0; i < n; ++i)
       if (a[i]) w[i] = y[i];
     return w;
@@ -195,9 +219,11 @@ struct PDASSolver::Impl {
     const double tol = std::max(1e-14, 1e-2 * opt.tol);
     Eigen::VectorXd Dinv(n);
     for (int i = 0; i < n; ++i) Dinv[i] = cg_active[i] ? 1.0 : 1.0 / S_diagonal[i];
-    y = Eigen::VectorXd::Zero(n);
+    // From the last solution (the previous PDAS iterate or step: the systems differ in a
+    // few rows and the right-hand side by O(dt)), exact on the identity rows.
+    y = y_last.size() == n ? y_last : Eigen::VectorXd::Zero(n);
     for (int i = 0; i < n; ++i)
-      if (cg_active[i]) y[i] = b[i];  // exact on the identity rows from the start
+      if (cg_active[i]) y[i] = b[i];
     Eigen::VectorXd r = b - apply_tilde(cg_active, y);
     const double bnorm = b.norm();
     if (bnorm == 0.0 || r.norm() <= tol * bnorm) return true;
@@ -219,6 +245,40 @@ struct PDASSolver::Impl {
     return false;
   }
 
+  int update_limit() const { return opt.pdas_update_limit >= 0 ? opt.pdas_update_limit : std::max(300, n / 100); }
+
+  double cg_iteration_flops() const { return 2.0 * double(S.nonZeros()) + 12.0 * n; }
+
+  // Whether the factor should now be brought to the current active set although CG
+  // would do: when the active set has settled — the same for the last kSettled solves
+  // (while the contact zone chatters, each set serves at most two: the last solve of a
+  // step and the first of the next) — so that the coming steps are one forward/back
+  // solve each again; or after pdas_cg_resync CG iterations since the last sync, if set.
+  bool resync_due(const std::vector<char>& active) const {
+    constexpr int kSettled = 3;
+    if (opt.pdas_cg_resync >= 0 && cg_since_sync >= opt.pdas_cg_resync) return true;
+    return cg_mode_uses + 1 >= kSettled && active == cg_active;
+  }
+
+  // Whether a CG solve is expected to cost less than bringing the factor to `active`.
+  // Beyond update_limit() changes the alternative is a refactorization (≈ 30 solves):
+  // CG.  Otherwise it is one row update per changed unknown, whose cost CHOLMOD counts
+  // (modfl, mean over the updates done so far on this pattern), against a CG solve of
+  // (mean iterations so far, 50 before any) × (2 nnz(S) + 12 n) flops: the product with
+  // S and the five vector updates of an iteration.  Both are memory-bound sparse loops,
+  // so flops compare their times to within a small factor (docs/performance.md (a):
+  // at n = 80 small changes go to row updates, at n = 160 the contact jumps go to CG).
+  // Before any update is measured, CG: the first resync measures one.  Deterministic:
+  // flop counts, not clocks, so a run repeats exactly.
+  bool cg_pays(const std::vector<char>& active) const {
+    int changes = 0;
+    for (int i = 0; i < n; ++i) changes += active[i] != factor_active[i];
+    if (changes > update_limit() || updates_measured == 0) return true;
+    const double iterations = counters.cg_solves > 0 ? double(counters.cg_iterations) / counters.cg_solves : 50.0;
+    const double cg_flops = iterations * cg_iteration_flops();
+    return changes * (update_flops / updates_measured) > cg_flops;
+  }
+
   // Makes the factorization that of S̃ for this active set.
   void set_active(const std::vector<char>& active, bool fresh = false) {
     if (saddle) {
@@ -238,7 +298,8 @@ struct PDASSolver::Impl {
       cg_mode = false;
       return;
     }
-    if (opt.pdas_cg_iterations > 0 && !cg_failed && cg_since_sync < opt.pdas_cg_resync) {
+    if (opt.pdas_cg_iterations > 0 && !cg_failed && !resync_due(active) && cg_pays(active)) {
+      cg_mode_uses = cg_mode && active == cg_active ? cg_mode_uses + 1 : 1;
       cg_mode = true;  // the factor stays as it is; solve_tilde runs CG
       cg_active = active;
       return;
@@ -251,14 +312,24 @@ struct PDASSolver::Impl {
     ++counters.solves;
     if (!saddle && cg_mode) {
       Eigen::VectorXd y;
-      if (cg_solve(top, y)) {
+      bool solved;
+      {
+        ScopeTimer timer(counters.cg_s);
+        solved = cg_solve(top, y);
+      }
+      if (solved) {
         ++counters.cg_solves;
+        y_last = y;
         return y;
       }
       cg_failed = true;  // S̃ not well conditioned enough: the factor from now on
       sync_factor(cg_active);
     }
-    if (!saddle) return chol.solve(top);
+    if (!saddle) {
+      ScopeTimer timer(counters.solve_s);
+      y_last = chol.solve(top);
+      return y_last;
+    }
     const int m = static_cast<int>(K.rows()) - n;
     Eigen::VectorXd b(n + m);
     b.head(n) = top;

@@ -62,6 +62,8 @@ class PDASSolver : public StepSolver {
     int damped_iterations = 0;  // projected Newton iterations after a detected cycle
     int cg_solves = 0;       // systems solved by preconditioned CG instead of the factor
     int cg_iterations = 0;   // their CG iterations (one product with S each)
+    // Wall time in each kind of linear algebra (explicit S; for profiling, bench/):
+    double factorization_s = 0, row_update_s = 0, solve_s = 0, cg_s = 0;
   };
   const Counters& counters() const;
 

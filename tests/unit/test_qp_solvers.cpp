@@ -251,9 +251,11 @@ TEST(QPSolvers, PdasWarmStartFromTheSolutionTakesOneIteration) {
 TEST(QPSolvers, PdasRowUpdatesGiveTheSameAnswerAsRefactorization) {
   // A sequence of right-hand sides, as in a time loop: S fixed, the active set moves.
   BoundQP qp = random_problem(30, 30, 31, false);
+  // (CG off: this compares the two ways to change the factor itself.)
   QPOptions refactor_only;
   refactor_only.pdas_update_limit = 0;
-  QPOptions updates;
+  refactor_only.pdas_cg_iterations = 0;
+  QPOptions updates = refactor_only;
   updates.pdas_update_limit = 1000000;
   cdyn::PDASSolver a(refactor_only), b(updates);
   QPResult ra, rb;
@@ -272,6 +274,38 @@ TEST(QPSolvers, PdasRowUpdatesGiveTheSameAnswerAsRefactorization) {
   EXPECT_LT(b.counters().factorizations, a.counters().factorizations);
   std::cout << "refactor only: " << a.counters().factorizations << " factorizations; with row updates: "
             << b.counters().factorizations << " factorizations + " << b.counters().row_updates << " row updates\n";
+}
+
+TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
+  // A solver whose factor is that of S with no active bound (its first call had no
+  // bounds), then the bounded QP solved again and again from its own solution, as in a
+  // time loop whose contact zone has stopped moving.  Each of these calls meets an
+  // active set that differs from the factor's: the first two solve it by CG (no row
+  // update measured yet: qp_pdas.cpp cg_pays), then the set has served three solves in
+  // a row and the factor is brought to it; from there on a call is one forward/back
+  // solve with the factor and no CG.
+  const BoundQP qp = random_problem(20, 20, 7, false);
+  const QPResult solution = cdyn::PDASSolver().solve(qp);
+  ASSERT_GT(std::count_if(solution.active.begin(), solution.active.end(), [](auto a) { return a != 0; }), 0);
+  BoundQP unbounded = qp;
+  unbounded.lower.setConstant(-std::numeric_limits<double>::infinity());
+  unbounded.upper.setConstant(std::numeric_limits<double>::infinity());
+  cdyn::PDASSolver pdas;
+  pdas.solve(unbounded);
+  const auto c0 = pdas.counters();
+  std::vector<int> cg_solves, factor_changes;
+  for (int call = 0; call < 4; ++call) {
+    const QPResult r = pdas.solve(qp, &solution);
+    EXPECT_EQ(r.iterations, 1);
+    EXPECT_LE((r.X - solution.X).lpNorm<Eigen::Infinity>(), 1e-10);
+    cg_solves.push_back(pdas.counters().cg_solves - c0.cg_solves);
+    factor_changes.push_back(pdas.counters().factorizations + pdas.counters().row_updates - c0.factorizations -
+                             c0.row_updates);
+  }
+  EXPECT_EQ(cg_solves, (std::vector<int>{1, 2, 2, 2}));  // CG twice, then the factor
+  EXPECT_EQ(factor_changes[1], 0);
+  EXPECT_GT(factor_changes[2], 0);                      // the factor caught up on the third call
+  EXPECT_EQ(factor_changes[3], factor_changes[2]);      // and stays
 }
 
 TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
