@@ -45,7 +45,7 @@ import os
 import subprocess
 import sys
 
-from elastic_runs import QUIET, area as mesh_area, check, failures, run as run_scene
+from cli_helpers import QUIET, area as mesh_area, check, failures, run as run_scene
 
 cdyn, src, work = sys.argv[1:4]
 scenes = os.path.join(src, "data", "scenes")

@@ -27,7 +27,7 @@ import os
 import subprocess
 import sys
 
-from elastic_runs import area, check, failures, run
+from cli_helpers import area, check, failures, run
 
 cdyn, src, work = sys.argv[1:4]
 os.makedirs(work, exist_ok=True)

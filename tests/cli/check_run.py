@@ -22,6 +22,8 @@ import shutil
 import subprocess
 import sys
 
+from cli_helpers import have_matplotlib
+
 cdyn, work = sys.argv[1], sys.argv[2]
 
 
@@ -37,14 +39,6 @@ def run(out, *sets, scene=None, quiet=True, env=None):
         summary = json.load(f)
     return rows, summary, p.stdout
 
-
-def have_matplotlib():
-    """Whether cdyn will find a python3 with matplotlib (python_script.cpp's search)."""
-    for python in ["python3", "/usr/bin/python3"]:
-        if shutil.which(python) and subprocess.run([python, "-c", "import matplotlib"],
-                                                   stderr=subprocess.DEVNULL).returncode == 0:
-            return True
-    return False
 
 
 def close(a, b, rel):

@@ -18,6 +18,8 @@ import shutil
 import subprocess
 import sys
 
+from cli_helpers import have_matplotlib
+
 cdyn, work = sys.argv[1], sys.argv[2]
 COLUMNS = ["n_dofs", "n_steps", "dt", "h", "wall_s", "s_per_step", "qp_iters_mean", "E_rel_drift", "E_rel_error_T",
            "error", "error_kind"]
@@ -31,13 +33,6 @@ def study(out, *args):
         reader = csv.DictReader(f)
         return reader.fieldnames, list(reader), p.stdout
 
-
-def have_matplotlib():
-    for python in ["python3", "/usr/bin/python3"]:
-        if shutil.which(python) and subprocess.run([python, "-c", "import matplotlib"],
-                                                   stderr=subprocess.DEVNULL).returncode == 0:
-            return True
-    return False
 
 
 def last_row(run_dir):

@@ -1,10 +1,12 @@
-"""elastic_runs.py — what the elasticity command-line checks (check_elasticity.py,
-check_ramp.py) share: running a scene with overrides and reading its summary.json,
-history.csv and contact.csv, the area of a .geo's mesh, and the ok/FAIL report."""
+"""cli_helpers.py — what the command-line checks share: running a scene with overrides
+and reading its summary.json, history.csv and contact.csv, the area of a mesh, the
+ok/FAIL report (check_elasticity.py, check_ramp.py), and whether cdyn will find
+matplotlib for its plots (check_run.py, check_study.py)."""
 import csv
 import json
 import os
 import re
+import shutil
 import subprocess
 
 QUIET = ["--quiet", "--set", "output.fields=false", "--set", "output.plots=false"]
@@ -38,3 +40,12 @@ def area(cdyn, mesh):
     """|Ω_h| of a .geo or .msh, from `cdyn mesh`."""
     text = subprocess.run([cdyn, "mesh", mesh], check=True, stdout=subprocess.PIPE, text=True).stdout
     return float(re.search(r"area\s+([0-9.eE+-]+)", text).group(1))
+
+
+def have_matplotlib():
+    """Whether cdyn will find a python3 with matplotlib (python_script.cpp's search)."""
+    for python in ["python3", "/usr/bin/python3"]:
+        if shutil.which(python) and subprocess.run([python, "-c", "import matplotlib"],
+                                                   stderr=subprocess.DEVNULL).returncode == 0:
+            return True
+    return False
