@@ -113,12 +113,7 @@ struct PDASSolver::Impl {
         updates_measured = 0;
       }
       S_tilde = S;
-      ScopeTimer timer(counters.factorization_s);
-      const int minor = chol.factorize(S);
-      ++counters.factorizations;
-      if (minor >= 0)
-        throw NumericalError("pdas: S is not positive definite (CHOLMOD: the factorization breaks down at unknown " +
-                             std::to_string(minor) + ")");
+      factorize(S, "S is not positive definite (CHOLMOD: the factorization breaks down");
       factor_active.assign(n, 0);
       updates_since_factorization = 0;
       cg_mode = cg_failed = false;
@@ -159,14 +154,18 @@ struct PDASSolver::Impl {
     lu_factorized = false;
   }
 
+  // A numeric factorization of `matrix` (timed, counted); NumericalError "pdas: <what> at
+  // unknown i)" if CHOLMOD finds it not positive definite.
+  void factorize(const SparseMatrix& matrix, const std::string& what) {
+    ScopeTimer timer(counters.factorization_s);
+    const int minor = chol.factorize(matrix);
+    ++counters.factorizations;
+    if (minor >= 0) throw NumericalError("pdas: " + what + " at unknown " + std::to_string(minor) + ")");
+  }
+
   void refactorize(const std::vector<char>& active) {
     eliminate(S, active, S_tilde);
-    ScopeTimer timer(counters.factorization_s);
-    const int minor = chol.factorize(S_tilde);
-    ++counters.factorizations;
-    if (minor >= 0)
-      throw NumericalError("pdas: the reduced matrix S_II is not positive definite (breakdown at unknown " +
-                           std::to_string(minor) + ")");
+    factorize(S_tilde, "the reduced matrix S_II is not positive definite (breakdown");
     factor_active = active;
     updates_since_factorization = 0;
     cg_mode = false;
