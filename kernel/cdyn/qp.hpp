@@ -73,8 +73,8 @@ struct QPOptions {
   // Jacobi-preconditioned conjugate gradients on S̃ (at most this many iterations; 0: never)
   // before touching the factor, when that is cheaper than the row updates (flop counts,
   // qp_pdas.cpp cg_pays).  Pays when S̃ is well conditioned — the step matrix of P1+/P0
-  // with the bubbles condensed (condition O(1), ≈ 40 iterations to 1e-14 at any n,
-  // docs/performance.md) — and gives up at the cap otherwise (then never again for this
+  // with the bubbles condensed (condition O(1): about 3 iterations per decade of the
+  // residual at any n, docs/performance.md) — and gives up at the cap otherwise (then never again for this
   // S).  The factor is brought to the current active set once that set has settled
   // (three solves in a row) or, if pdas_cg_resync ≥ 0, after that many CG iterations
   // since it was last (re)made.

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cdyn/error.hpp"
+#include "cdyn/masked_cg.hpp"
 
 namespace cdyn {
 
@@ -54,6 +55,10 @@ class ScopeTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+// CG's stopping tolerance for a PDAS iterate that is not yet the solution, relative to
+// the solution's scale (see cg_tolerance in PDASSolver::solve).
+constexpr double kLooseSolve = 1e-5;
+
 // State of an unknown: free, or held at its lower or upper bound.
 constexpr signed char kFree = 0, kLower = -1, kUpper = 1;
 
@@ -75,8 +80,10 @@ struct PDASSolver::Impl {
   bool cg_failed = false;             // CG did not converge once for this S: not tried again
   std::vector<char> cg_active;
   int cg_since_sync = 0;              // CG iterations since the factor was last (re)made
-  int cg_mode_uses = 0;               // solves in a row with cg_active (resync_due)
+  int cg_mode_uses = 0;               // calls of solve() in a row that used cg_active (resync_due)
+  int calls = 0, cg_active_call = 0;  // solve() calls so far; the last that used cg_active
   Eigen::VectorXd y_last;             // the last solution of solve_tilde: CG's first guess
+  double last_cg_residual = 0.0;      // CG's scaled residual in the last solve_tilde (0: by the factor)
   Eigen::VectorXd S_diagonal;
   // What the two ways to a new active set have cost so far on this pattern (flops as
   // CHOLMOD counts them for a row update; CG iterations), for cg_pays().
@@ -201,62 +208,20 @@ struct PDASSolver::Impl {
     cg_since_sync = 0;
   }
 
-  // y ↦ S̃ y for the active set `a`: identity rows/columns on a, S_II elsewhere.
-  Eigen::VectorXd apply_tilde(const std::vector<char>& a, const Eigen::VectorXd& y) const {
-    Eigen::VectorXd z = y;
-    for (int i = 0; i < n; ++i)
-      if (a[i]) z[i] = 0.0;
-    Eigen::VectorXd w = S.transpose() * z;  // = S z (S symmetric): a gather per row, faster than the column scatter
-    for (int i = 0; i < n; ++i)
-      if (a[i]) w[i] = y[i];
-    return w;
-  }
-
-  // Jacobi-preconditioned CG on S̃ y = b for cg_active (Hestenes–Stiefel with z = D̃⁻¹ r).
-  // Returns false if ‖b − S̃y‖₂ ≤ tol ‖b‖₂ is not reached within the cap.
-  bool cg_solve(const Eigen::VectorXd& b, Eigen::VectorXd& y) {
-    const double tol = std::max(1e-14, 1e-2 * opt.tol);
-    Eigen::VectorXd Dinv(n);
-    for (int i = 0; i < n; ++i) Dinv[i] = cg_active[i] ? 1.0 : 1.0 / S_diagonal[i];
-    // From the last solution (the previous PDAS iterate or step: the systems differ in a
-    // few rows and the right-hand side by O(dt)), exact on the identity rows.
-    y = y_last.size() == n ? y_last : Eigen::VectorXd::Zero(n);
-    for (int i = 0; i < n; ++i)
-      if (cg_active[i]) y[i] = b[i];
-    Eigen::VectorXd r = b - apply_tilde(cg_active, y);
-    const double bnorm = b.norm();
-    if (bnorm == 0.0 || r.norm() <= tol * bnorm) return true;
-    Eigen::VectorXd z = Dinv.cwiseProduct(r), p = z;
-    double rz = r.dot(z);
-    for (int k = 1; k <= opt.pdas_cg_iterations; ++k) {
-      const Eigen::VectorXd q = apply_tilde(cg_active, p);
-      const double alpha = rz / p.dot(q);
-      y += alpha * p;
-      r -= alpha * q;
-      ++counters.cg_iterations;
-      ++cg_since_sync;
-      if (r.norm() <= tol * bnorm) return true;
-      z = Dinv.cwiseProduct(r);
-      const double rz_next = r.dot(z);
-      p = z + (rz_next / rz) * p;
-      rz = rz_next;
-    }
-    return false;
-  }
-
   int update_limit() const { return opt.pdas_update_limit >= 0 ? opt.pdas_update_limit : std::max(300, n / 100); }
 
   double cg_iteration_flops() const { return 2.0 * double(S.nonZeros()) + 12.0 * n; }
 
   // Whether the factor should now be brought to the current active set although CG
-  // would do: when the active set has settled — the same for the last kSettled solves
-  // (while the contact zone chatters, each set serves at most two: the last solve of a
-  // step and the first of the next) — so that the coming steps are one forward/back
-  // solve each again; or after pdas_cg_resync CG iterations since the last sync, if set.
+  // would do: when the active set has settled — used by the last kSettled calls of
+  // solve() in a row (while the contact zone chatters, each set serves at most two: the
+  // last solves of a step and the first of the next) — so that the coming steps are one
+  // forward/back solve each again; or after pdas_cg_resync CG iterations since the last
+  // sync, if set.
   bool resync_due(const std::vector<char>& active) const {
     constexpr int kSettled = 3;
     if (opt.pdas_cg_resync >= 0 && cg_since_sync >= opt.pdas_cg_resync) return true;
-    return cg_mode_uses + 1 >= kSettled && active == cg_active;
+    return cg_mode && active == cg_active && cg_active_call != calls && cg_mode_uses + 1 >= kSettled;
   }
 
   // Whether a CG solve is expected to cost less than bringing the factor to `active`.
@@ -298,7 +263,11 @@ struct PDASSolver::Impl {
       return;
     }
     if (opt.pdas_cg_iterations > 0 && !cg_failed && !resync_due(active) && cg_pays(active)) {
-      cg_mode_uses = cg_mode && active == cg_active ? cg_mode_uses + 1 : 1;
+      if (!(cg_mode && active == cg_active))
+        cg_mode_uses = 1;
+      else if (cg_active_call != calls)
+        ++cg_mode_uses;
+      cg_active_call = calls;
       cg_mode = true;  // the factor stays as it is; solve_tilde runs CG
       cg_active = active;
       return;
@@ -307,17 +276,25 @@ struct PDASSolver::Impl {
   }
 
   // Solves S̃ y = top (explicit S), or K̃ [y; z] = [top; bottom] (saddle form).
-  Eigen::VectorXd solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd* bottom = nullptr) {
+  // CG (when the factor is not that of the active set) stops at the Jacobi-scaled
+  // residual cg_tol (masked_cg.hpp); the factor solves to round-off.
+  Eigen::VectorXd solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd* bottom, double cg_tol) {
     ++counters.solves;
+    last_cg_residual = 0.0;
     if (!saddle && cg_mode) {
-      Eigen::VectorXd y;
-      bool solved;
+      // From the last solution (the previous PDAS iterate or step: the systems differ in a
+      // few rows and the right-hand side by O(dt)).
+      Eigen::VectorXd y = y_last;
+      MaskedCGResult cg;
       {
         ScopeTimer timer(counters.cg_s);
-        solved = cg_solve(top, y);
+        cg = masked_cg(S, S_diagonal, cg_active, top, y, cg_tol, opt.pdas_cg_iterations);
       }
-      if (solved) {
+      counters.cg_iterations += cg.iterations;
+      cg_since_sync += cg.iterations;
+      if (cg.converged) {
         ++counters.cg_solves;
+        last_cg_residual = cg.scaled_residual;
         y_last = y;
         return y;
       }
@@ -341,7 +318,8 @@ struct PDASSolver::Impl {
   }
 
   // The minimizer with X_i = value_i on the active unknowns: S_II X_I = r_I − S_IA X_A.
-  Eigen::VectorXd solve_fixed(const BoundQP& qp, const std::vector<char>& active, const Eigen::VectorXd& value) {
+  Eigen::VectorXd solve_fixed(const BoundQP& qp, const std::vector<char>& active, const Eigen::VectorXd& value,
+                              double cg_tol) {
     set_active(active);
     Eigen::VectorXd top = qp.r;
     Eigen::VectorXd bottom;
@@ -360,7 +338,7 @@ struct PDASSolver::Impl {
     }
     for (int j = 0; j < n; ++j)
       if (active[j]) top[j] = value[j];
-    Eigen::VectorXd X = solve_tilde(top, saddle ? &bottom : nullptr);
+    Eigen::VectorXd X = solve_tilde(top, saddle ? &bottom : nullptr, cg_tol);
     for (int j = 0; j < n; ++j)
       if (active[j]) X[j] = value[j];
     return X;
@@ -384,6 +362,7 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   bool finished = false;  // result.reaction, kkt_residual, active already computed for result.X
   auto finish = [&](const std::string& detail) {
     if (!finished) finish_result(qp, s.form, opt.tol, result);
+    if (result.X.size() == n) s.y_last = result.X;  // CG's first guess next time
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report_failure("pdas", opt, result, detail);
     return result;
@@ -394,6 +373,7 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     return finish("");
   }
   s.prepare(qp, new_matrices);
+  ++s.calls;
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
   const Eigen::VectorXd& D = s.form.diagonal();
@@ -428,6 +408,7 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   for (int i = 0; i < n; ++i)
     if (l[i] == u[i]) state[i] = kLower;  // fixed unknowns
   if (warm_start && warm_start->X.size() == n) {
+    s.y_last = warm_start->X;  // CG's first guess
     // the previous active set, each unknown held at its nearer bound
     for (int i : warm_start->active) {
       if (i < 0 || i >= n || state[i] != kFree) continue;
@@ -440,19 +421,38 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     }
   }
 
+  // CG's tolerances on the Jacobi-scaled residual, in the units of kkt_residual (whose
+  // scale max(‖X‖∞, ‖r/D‖∞) is bounded below by ‖r/D‖∞ and the held bound values; on
+  // the free unknowns the natural residual is this scaled residual): half of tol for a
+  // solution (the other half is margin for the drift of CG's updated residual from the
+  // true one), and a loose one for an iterate that only has to point to the next active
+  // set.  When the active set repeats on a loose solve, the same system is solved again
+  // to the tight tolerance (CG from the loose solution) before the repeat is believed.
+  const double r_scale = qp.r.cwiseQuotient(D).lpNorm<Eigen::Infinity>();
+  auto cg_tolerance = [&](const Eigen::VectorXd& held_values, bool tight) {
+    const double scale = std::max(r_scale, held_values.lpNorm<Eigen::Infinity>());
+    return (tight ? 0.5 * opt.tol : std::max(0.5 * opt.tol, kLooseSolve)) * scale;
+  };
+
   std::vector<char> active;
   Eigen::VectorXd value, X, lam;
   std::set<std::vector<signed char>> seen;
   bool cycled = false;
   bool refined_fresh = false;
+  bool tight = false;
   int it = 0;
   while (it < opt.max_iterations) {
     ++it;
     bound_values(state, active, value);
-    X = s.solve_fixed(qp, active, value);
+    X = s.solve_fixed(qp, active, value, cg_tolerance(value, tight));
     lam = s.form.apply(X) - qp.r;
     const std::vector<signed char> next = rule(X, lam);
     result.iterations = it;
+    if (next == state && !tight && s.last_cg_residual > cg_tolerance(value, true)) {
+      tight = true;  // confirm on a tight solve
+      continue;
+    }
+    tight = false;
     if (next == state) {
       // X is exact up to the linear solve: refine if the residual says it is not enough
       result.X = X;
@@ -466,7 +466,8 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
           if (active[i]) top[i] = 0.0;
         Eigen::VectorXd zero;
         if (s.saddle) zero = Eigen::VectorXd::Zero(s.blocks.C.rows());
-        result.X += s.solve_tilde(top, s.saddle ? &zero : nullptr);
+        s.y_last.setZero();  // a correction: CG from 0
+        result.X += s.solve_tilde(top, s.saddle ? &zero : nullptr, cg_tolerance(value, true));
         finish_result(qp, s.form, opt.tol, result);
       }
       if (!result.converged && !refined_fresh && (s.saddle || s.cg_mode || s.updates_since_factorization > 0)) {
@@ -516,7 +517,8 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     for (int i = 0; i < n; ++i) top[i] = active[i] ? -lam[i] / D[i] : -lam[i];
     Eigen::VectorXd zero;
     if (s.saddle) zero = Eigen::VectorXd::Zero(s.blocks.C.rows());
-    const Eigen::VectorXd p = s.solve_tilde(top, s.saddle ? &zero : nullptr);
+    s.y_last.setZero();  // a direction: CG from 0
+    const Eigen::VectorXd p = s.solve_tilde(top, s.saddle ? &zero : nullptr, cg_tolerance(X, true));
     // Armijo along the projection arc X(t) = P(X + t p)
     double t = 1.0;
     bool accepted = false;

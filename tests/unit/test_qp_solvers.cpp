@@ -308,6 +308,34 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   EXPECT_EQ(factor_changes[3], factor_changes[2]);      // and stays
 }
 
+TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
+  // A cold start whose every system is solved by CG (the factor is that of S with no
+  // active bound): the iterates are solved loosely (qp_pdas.cpp kLooseSolve) and the
+  // repeating active set is confirmed on a tight solve.  The result must meet tol like
+  // any other, with the active set of the direct solver (factor only) and X within the
+  // sum of the two a-posteriori error bounds.
+  const BoundQP qp = random_problem(20, 20, 7, false);
+  QPOptions direct_options;
+  direct_options.pdas_cg_iterations = 0;
+  const QPResult direct = cdyn::PDASSolver(direct_options).solve(qp);
+  BoundQP unbounded = qp;
+  unbounded.lower.setConstant(-inf);
+  unbounded.upper.setConstant(inf);
+  cdyn::PDASSolver pdas;
+  pdas.solve(unbounded);
+  const auto c0 = pdas.counters();
+  const QPResult r = pdas.solve(qp);
+  const int cg_solves = pdas.counters().cg_solves - c0.cg_solves;
+  // The first system (no active bound) is the factor's own; every other one is by CG:
+  // at least one loose iterate, the loose repeat of its set and the tight confirm.
+  EXPECT_EQ(cg_solves, r.iterations - 1);
+  EXPECT_GE(cg_solves, 3);
+  expect_kkt(qp, r, QPOptions{}.tol, "pdas on CG iterates");
+  EXPECT_EQ(r.active, direct.active);
+  const ErrorBound bound(qp);
+  EXPECT_LE((r.X - direct.X).lpNorm<Eigen::Infinity>(), bound(qp, r) + bound(qp, direct));
+}
+
 TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
   const BoundQP qp = random_problem(15, 15, 41, false);
   cdyn::PDASSolver pdas;
