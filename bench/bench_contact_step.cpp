@@ -12,8 +12,12 @@
 //                                   and the update, as in the contact step)
 // condense = 1: the bubbles eliminated (implicit_step.hpp, condensation.hpp), 0: the full
 // 76 481-unknown QP; cg = QPOptions::pdas_cg_iterations (0: active-set changes only by
-// CHOLMOD row updates or refactorization, qp_pdas.hpp).  Each iteration builds a fresh scheme and solver, runs the 210 steps
-// before the window untimed, and times the window (manual time: seconds per step).
+// CHOLMOD row updates or refactorization, qp_pdas.hpp).  Each iteration builds a fresh
+// scheme and solver, runs the 210 steps before the window untimed, and times the window
+// (manual time: seconds per step); 5 repetitions of each case, which scripts/bench.sh
+// interleaves at random (--benchmark_enable_random_interleaving=true) so that the linear
+// and the contact windows see the same machine: on this VM a window's time drifts by up
+// to 25 % between runs minutes apart, and the ratio must not inherit that.
 // Counters per step: qp_ms (the solver's share), iters (pdas linear solves), factor
 // (numeric factorizations), rowupd (CHOLMOD row updates), cg (CG solves), cg_it/cg (CG
 // iterations per CG solve), max_active; unknowns counts the free dofs before condensation;
@@ -133,7 +137,7 @@ void register_all() {
         ->UseManualTime()
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1)
-        ->Repetitions(3)
+        ->Repetitions(5)
         ->ReportAggregatesOnly(true);
   }
 }

@@ -11,8 +11,10 @@ PY=/usr/bin/python3
 mkdir -p "$OUT"
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "== (a) contact overhead, membrane P1+/P0 midpoint n = 160 and 80, steps 211-310"
-"$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1'
-CDYN_BENCH_N=80 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1'
+"$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1' \
+    --benchmark_enable_random_interleaving=true
+CDYN_BENCH_N=80 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1' \
+    --benchmark_enable_random_interleaving=true
 echo "== (b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, 300 steps (n = 160: 270 steps)"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80 --steps 300
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 160 --steps 270

@@ -45,6 +45,10 @@ Eigen::VectorXd ImplicitStep::mass_times(const Eigen::VectorXd& x) const {
   return p_.mass->momentum(p_.mass->velocity(x));
 }
 
+Eigen::VectorXd ImplicitStep::inertia(double a, const Eigen::VectorXd& U, double b, const Eigen::VectorXd& V) const {
+  return p_.mass->momentum(a * p_.mass->velocity(U) + b * V);
+}
+
 void ImplicitStep::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   if (condensation_) {
     bool bounded = false;

@@ -20,7 +20,7 @@ class BackwardEuler final : public ImplicitStep {
   StepStats step(State& s) override {
     const double c = 1.0 / dt_;
     StepStats stats;
-    const Eigen::VectorXd r = c * c * mass_times(s.U) + c * p_.mass->momentum(s.V) + p_.load(s.t + dt_);
+    const Eigen::VectorXd r = inertia(c * c, s.U, c, s.V) + p_.load(s.t + dt_);  // c² M Uⁿ + c Bᵀ Vⁿ + L
     const Eigen::VectorXd U1 = solve(r, s, stats);
     s.V = p_.mass->velocity(c * (U1 - s.U));
     s.U = U1;

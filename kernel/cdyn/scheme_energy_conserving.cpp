@@ -33,7 +33,7 @@ class EnergyConserving final : public ImplicitStep {
     if (U_prev_.size() == 0) {
       // Start: one midpoint step, constraint on the half step.  Its matrix 4Mc² + A is
       // 4S, so the scheme's own QP serves with r = M U⁰ c² + ½ Bᵀ V⁰ c + L^{½}/4.
-      const Eigen::VectorXd r = c * c * mass_times(s.U) + 0.5 * c * p_.mass->momentum(s.V) + 0.25 * p_.load(s.t + 0.5 * dt_);
+      const Eigen::VectorXd r = inertia(c * c, s.U, 0.5 * c, s.V) + 0.25 * p_.load(s.t + 0.5 * dt_);
       U1 = 2.0 * solve(r, s, stats) - s.U;
       s.reaction *= 4.0;  // the midpoint step's Gᵀλ (its QP was scaled by ¼)
     } else {

@@ -26,13 +26,12 @@ class Midpoint final : public ImplicitStep {
   StepStats step(State& s) override {
     const double c = 1.0 / dt_;
     const Eigen::VectorXd L = p_.load(s.t + 0.5 * dt_);
-    const Eigen::VectorXd BtV = p_.mass->momentum(s.V);
     StepStats stats;
     Eigen::VectorXd U1;
-    if (at_end_) {
-      U1 = solve(2 * c * c * mass_times(s.U) + 2 * c * BtV - 0.5 * (p_.A * s.U) + L, s, stats);
-    } else {
-      U1 = 2.0 * solve(4 * c * c * mass_times(s.U) + 2 * c * BtV + L, s, stats) - s.U;
+    if (at_end_) {  // 2c² M Uⁿ + 2c Bᵀ Vⁿ − ½ A Uⁿ + L
+      U1 = solve(inertia(2 * c * c, s.U, 2 * c, s.V) - 0.5 * (p_.A * s.U) + L, s, stats);
+    } else {        // 4c² M Uⁿ + 2c Bᵀ Vⁿ + L
+      U1 = 2.0 * solve(inertia(4 * c * c, s.U, 2 * c, s.V) + L, s, stats) - s.U;
     }
     s.V = 2.0 * p_.mass->velocity(c * (U1 - s.U)) - s.V;
     s.U = U1;

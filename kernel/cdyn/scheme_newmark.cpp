@@ -29,8 +29,8 @@ class Newmark final : public ImplicitStep {
     // A⁰ from (N3) at t = 0 with λ⁰ = 0: Bᵀ A⁰ = L⁰ − A U⁰.
     if (Acc_.size() == 0) Acc_ = p_.mass->acceleration(p_.load(s.t) - p_.A * s.U);
     StepStats stats;
-    const Eigen::VectorXd r =
-        (c * c / b) * mass_times(s.U) + p_.mass->momentum((c / b) * s.V + ((0.5 - b) / b) * Acc_) + p_.load(s.t + dt_);
+    const Eigen::VectorXd r =  // (c²/β) M Uⁿ + Bᵀ((c/β) Vⁿ + ((½ − β)/β) Aⁿ) + L
+        inertia(c * c / b, s.U, 1.0, (c / b) * s.V + ((0.5 - b) / b) * Acc_) + p_.load(s.t + dt_);
     const Eigen::VectorXd U1 = solve(r, s, stats);
     // (N1) for A^{n+1}, then (N2) for V^{n+1}.
     const Eigen::VectorXd Acc1 = (p_.mass->velocity(c * c * (U1 - s.U)) - c * s.V - (0.5 - b) * Acc_) / b;
