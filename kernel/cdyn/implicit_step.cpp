@@ -41,7 +41,6 @@ Energy ImplicitStep::energy(const State& s) const {
 }
 
 Eigen::VectorXd ImplicitStep::mass_times(const Eigen::VectorXd& x) const {
-  if (M_) return *M_ * x;
   return p_.mass->momentum(p_.mass->velocity(x));
 }
 

@@ -29,7 +29,8 @@ class ImplicitStep : public TimeScheme {
  protected:
   ImplicitStep(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m, bool condense = true);
 
-  // M x = Bᵀ C⁻¹ B x (sparse product when M is explicit).
+  // M x = Bᵀ (C⁻¹ B x): the momentum of the velocity of x, by the same route as inertia()
+  // below (not the explicit M, which has more entries than B and Bᵀ together for P1+/P0).
   Eigen::VectorXd mass_times(const Eigen::VectorXd& x) const;
 
   // The inertia terms of a right-hand side, a M U + b Bᵀ V = Bᵀ (a C⁻¹B U + b V): the
