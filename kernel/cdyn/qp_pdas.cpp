@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -82,9 +83,11 @@ struct PDASSolver::Impl {
   int cg_since_sync = 0;              // CG iterations since the factor was last (re)made
   int cg_mode_uses = 0;               // calls of solve() in a row that used cg_active (resync_due)
   int calls = 0, cg_active_call = 0;  // solve() calls so far; the last that used cg_active
+  std::optional<MaskedCG> cg;         // CG on S (its preconditioner, work vectors, last residual)
   Eigen::VectorXd y_last;             // the last solution of solve_tilde: CG's first guess
   double last_cg_residual = 0.0;      // CG's scaled residual in the last solve_tilde (0: by the factor)
-  Eigen::VectorXd S_diagonal;
+  bool last_by_cg = false;            // the last solve_tilde was a converged CG solve
+  bool resume_cg = false;             // the next solve_tilde repeats the last one at a smaller tol
   // What the two ways to a new active set have cost so far on this pattern (flops as
   // CHOLMOD counts them for a row update; CG iterations), for cg_pays().
   double update_flops = 0.0;
@@ -125,7 +128,8 @@ struct PDASSolver::Impl {
       updates_since_factorization = 0;
       cg_mode = cg_failed = false;
       cg_since_sync = 0;
-      S_diagonal = S.diagonal();
+      cg.reset();
+      if (opt.pdas_cg_iterations > 0) cg.emplace(S);  // (references the member S)
       return;
     }
     const SaddleForm& f = *qp.saddle;
@@ -262,7 +266,7 @@ struct PDASSolver::Impl {
       cg_mode = false;
       return;
     }
-    if (opt.pdas_cg_iterations > 0 && !cg_failed && !resync_due(active) && cg_pays(active)) {
+    if (cg && !cg_failed && !resync_due(active) && cg_pays(active)) {
       if (!(cg_mode && active == cg_active))
         cg_mode_uses = 1;
       else if (cg_active_call != calls)
@@ -281,6 +285,8 @@ struct PDASSolver::Impl {
   Eigen::VectorXd solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd* bottom, double cg_tol) {
     ++counters.solves;
     last_cg_residual = 0.0;
+    const bool resume = resume_cg && last_by_cg;
+    resume_cg = last_by_cg = false;
     if (!saddle && cg_mode) {
       // From the last solution (the previous PDAS iterate or step: the systems differ in a
       // few rows and the right-hand side by O(dt)).
@@ -288,13 +294,14 @@ struct PDASSolver::Impl {
       MaskedCGResult cg;
       {
         ScopeTimer timer(counters.cg_s);
-        cg = masked_cg(S, S_diagonal, cg_active, top, y, cg_tol, opt.pdas_cg_iterations);
+        cg = this->cg->solve(cg_active, top, y, cg_tol, opt.pdas_cg_iterations, resume);
       }
       counters.cg_iterations += cg.iterations;
       cg_since_sync += cg.iterations;
       if (cg.converged) {
         ++counters.cg_solves;
         last_cg_residual = cg.scaled_residual;
+        last_by_cg = true;
         y_last = y;
         return y;
       }
@@ -315,6 +322,23 @@ struct PDASSolver::Impl {
       b.tail(m).setZero();
     Eigen::VectorXd y = lu.solve(b);
     return y.head(n);
+  }
+
+  // λ = S X − r for the X that solve_fixed has just returned for `active`.  After a CG
+  // solve the free rows are CG's residual with the sign changed: its b_I is
+  // r_I − S_IA X_A, so (S X − r)_I = (S̃ y − b)_I; only the held rows need S, one column
+  // each (S symmetric: column i is row i), |A| columns instead of all n.  After a solve
+  // with the factor, or in saddle form, the whole product.
+  Eigen::VectorXd reaction(const BoundQP& qp, const Eigen::VectorXd& X, const std::vector<char>& active) const {
+    if (!last_by_cg) return form.apply(X) - qp.r;
+    Eigen::VectorXd lam = -cg->residual();
+    for (int i = 0; i < n; ++i)
+      if (active[i]) {
+        double sum = 0.0;
+        for (SparseMatrix::InnerIterator it(S, i); it; ++it) sum += it.value() * X[it.row()];
+        lam[i] = sum - qp.r[i];
+      }
+    return lam;
   }
 
   // The minimizer with X_i = value_i on the active unknowns: S_II X_I = r_I − S_IA X_A.
@@ -445,16 +469,19 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     ++it;
     bound_values(state, active, value);
     X = s.solve_fixed(qp, active, value, cg_tolerance(value, tight));
-    lam = s.form.apply(X) - qp.r;
+    lam = s.reaction(qp, X, active);  // CG's residual on the free unknowns
     const std::vector<signed char> next = rule(X, lam);
     result.iterations = it;
     if (next == state && !tight && s.last_cg_residual > cg_tolerance(value, true)) {
-      tight = true;  // confirm on a tight solve
+      tight = true;  // confirm on a tight solve: the same system, CG's iteration goes on
+      s.resume_cg = true;
       continue;
     }
     tight = false;
     if (next == state) {
-      // X is exact up to the linear solve: refine if the residual says it is not enough
+      // X is exact up to the linear solve: refine if the residual says it is not enough.
+      // The reaction from the whole product: CG's updated residual has drifted by round-off.
+      if (s.last_by_cg) lam = s.form.apply(X) - qp.r;
       result.X = X;
       result.reaction = lam;
       result.kkt_residual = kkt_residual(qp, X, lam, &D);
@@ -479,8 +506,12 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
       return finish("active set repeated but the residual stays above tol: S is ill-conditioned");
     }
     if (kkt_residual(qp, X, lam, &D) <= opt.tol) {
-      result.X = X;  // degenerate unknowns (λ_i ≈ 0 at the bound) may still switch: X is good
-      return finish("");
+      // degenerate unknowns (λ_i ≈ 0 at the bound) may still switch: X is good if the
+      // residual with the whole product says so too (finish recomputes λ that way)
+      result.X = X;
+      finish_result(qp, s.form, opt.tol, result);
+      finished = result.converged;
+      if (finished) return finish("");
     }
     if (seen.count(next)) {
       cycled = true;
