@@ -1,5 +1,5 @@
 #!/bin/sh
-# bench.sh — runs issue 9's benchmark set (docs/performance.md), about 6–7 minutes on the 2-core
+# bench.sh — runs issue 9's benchmark set (docs/performance.md), about 7–8 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
 # BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step and
 # bench_step_solvers built (cmake --build BUILD --target cdyn_app bench_contact_step bench_step_solvers).
@@ -8,6 +8,10 @@ BUILD=${1:-build}
 OUT=${2:-out/bench}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 PY=/usr/bin/python3
+# One core for every timing: OpenBLAS (under CHOLMOD's supernodal solves) would otherwise
+# start a second thread, which spins while idle and could give the linear step's
+# forward/back solve a core that the contact step's CG does not use.
+export OPENBLAS_NUM_THREADS=1
 mkdir -p "$OUT"
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "== (a) contact overhead, membrane P1+/P0 midpoint n = 160 and 80, steps 211-310"

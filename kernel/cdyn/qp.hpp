@@ -70,7 +70,7 @@ struct QPOptions {
   // refactor; −1: max(300, n/100), the break-even measured in docs/performance.md)
   int pdas_update_limit = -1;
   // pdas, explicit S: solve a system whose active set differs from the factorized one by
-  // Jacobi-preconditioned conjugate gradients on S̃ (at most this many iterations; 0: never)
+  // preconditioned conjugate gradients on S̃ (masked_cg.hpp; at most this many iterations; 0: never)
   // before touching the factor, when that is cheaper than the row updates (flop counts,
   // qp_pdas.cpp cg_pays).  Pays when S̃ is well conditioned — the step matrix of P1+/P0
   // with the bubbles condensed (condition O(1): about 3 iterations per decade of the

@@ -58,7 +58,7 @@ class ScopeTimer {
 
 // CG's stopping tolerance for a PDAS iterate that is not yet the solution, relative to
 // the solution's scale (see cg_tolerance in PDASSolver::solve).
-constexpr double kLooseSolve = 1e-5;
+constexpr double kLooseSolve = 1e-4;
 
 // State of an unknown: free, or held at its lower or upper bound.
 constexpr signed char kFree = 0, kLower = -1, kUpper = 1;

@@ -22,15 +22,16 @@
 //     QPOptions::pdas_update_limit unknowns (default max(300, n/100)) is applied to the
 //     factor by cholmod_rowdel / cholmod_rowadd instead of refactorizing;
 //     before any of that, a system whose active set differs from the factorized one
-//     is solved by Jacobi-preconditioned CG on S̃ (masked_cg.hpp,
-//     QPOptions::pdas_cg_iterations) when that costs fewer flops than the row updates:
-//     for a well-conditioned S (the condensed P1+/P0 step matrix) a CG iteration costs
-//     a twelfth of a forward/back solve, against a factorization (≈ 15 solves) or
+//     is solved by CG on S̃, preconditioned by multicolour symmetric Gauss–Seidel
+//     (masked_cg.hpp, QPOptions::pdas_cg_iterations) when that costs fewer flops than
+//     the row updates: for a well-conditioned S (the condensed P1+/P0 step matrix) a CG
+//     iteration costs a seventh of a forward/back solve, against a factorization (≈ 15 solves) or
 //     hundreds of row updates (≈ 0.1 solve each) when the contact zone jumps; the
 //     factor follows once the set has settled.  CG stops at a residual in the units of
-//     kkt_residual: loosely (1e-5 of the solution's scale) for an iterate that only
-//     decides the next active set, and at tol/2 to confirm the set that repeats
-//     (inexact semismooth Newton: the final X meets tol like a direct solve's);
+//     kkt_residual: loosely (1e-4 of the solution's scale) for an iterate that only
+//     decides the next active set, and at tol/2 to confirm the set that repeats (the
+//     same CG iteration resumed; inexact semismooth Newton: the final X meets tol like a
+//     direct solve's); between iterates λ on the free rows is CG's residual;
 //   - saddle form: the same elimination in K = [[A, c Bᵀ], [B, −C]] (X rows only), LU
 //     by UMFPACK, symbolic analysis kept while K's pattern is unchanged; no updates.
 // A new explicit S is factorized once whole first: that checks it is positive definite
