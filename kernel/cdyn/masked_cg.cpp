@@ -65,7 +65,9 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     return scaled_max(r_, D_);
   };
 
-  if (resume && resumable_ && y.size() == n) {
+  const bool resuming = resume && resumable_ && y.size() == n;
+  resumable_ = false;  // until this solve converges
+  if (resuming) {
     // the interrupted iteration's next direction
     result.scaled_residual = last_scaled_;
     if (!(last_scaled_ > tol)) {
@@ -87,7 +89,6 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     for (int i = 0; i < n; ++i)
       if (held[i]) r_[i] = 0.0;
     result.scaled_residual = scaled_max(r_, D_);
-    resumable_ = false;
     if (!(result.scaled_residual > tol)) {
       result.converged = std::isfinite(result.scaled_residual);
       return result;
@@ -98,7 +99,6 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     rr_ = r_hat_.squaredNorm();
     p_ = r_hat_;
   }
-  resumable_ = false;
   for (int k = 1; k <= max_iterations; ++k) {
     const double alpha = rr_ / sgs_.apply(held, p_.data(), t_.data(), w_.data(), q_.data());
     const Sweep sweep = update(n, alpha, t_.data(), q_.data(), inverse_sqrt_D_.data(), y.data(), r_hat_.data());

@@ -291,16 +291,16 @@ struct PDASSolver::Impl {
       // From the last solution (the previous PDAS iterate or step: the systems differ in a
       // few rows and the right-hand side by O(dt)).
       Eigen::VectorXd y = y_last;
-      MaskedCGResult cg;
+      MaskedCGResult run;
       {
         ScopeTimer timer(counters.cg_s);
-        cg = this->cg->solve(cg_active, top, y, cg_tol, opt.pdas_cg_iterations, resume);
+        run = cg->solve(cg_active, top, y, cg_tol, opt.pdas_cg_iterations, resume);
       }
-      counters.cg_iterations += cg.iterations;
-      cg_since_sync += cg.iterations;
-      if (cg.converged) {
+      counters.cg_iterations += run.iterations;
+      cg_since_sync += run.iterations;
+      if (run.converged) {
         ++counters.cg_solves;
-        last_cg_residual = cg.scaled_residual;
+        last_cg_residual = run.scaled_residual;
         last_by_cg = true;
         y_last = y;
         return y;
