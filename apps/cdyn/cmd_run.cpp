@@ -150,7 +150,9 @@ class History {
          << st.qp_iterations << "," << st.qp_seconds;
     const ConstrainedProblem& p = sim_.problem;
     const Eigen::VectorXd U_full = p.full(s.U);
-    const Eigen::VectorXd reaction_xy = s.reaction.size() > 0 ? p.global(s.reaction) : Eigen::VectorXd();
+    Eigen::VectorXd rotated_back;  // the reaction in (x, y), formed only with a rotation
+    if (p.R && s.reaction.size() > 0) rotated_back = p.global(s.reaction);
+    const Eigen::VectorXd& reaction_xy = p.R ? rotated_back : s.reaction;
     if (momentum_) {
       const bool write = step % sim_.contact_every == 0 || step == sim_.n_steps;
       const double force = contact_ ? contact_->record(step, s.t, U_full, reaction_xy, write) : 0.0;
@@ -256,8 +258,9 @@ int cmd_run(const RunOptions& opt) {
       if (fields) fields->finish();
       throw NumericalError("step " + std::to_string(n) + " (t = " + std::to_string(s.t + sim.dt) + "): " + e.what());
     }
-    rate.setZero();
-    const Eigen::VectorXd du = (s.U - U_old) / sim.dt;
+    // the rate in (x, y) (global(): the unknowns are rotated components at the contact
+    // nodes of an inclined plane); on the fixed dofs it stays 0 (U_D is constant in time)
+    const Eigen::VectorXd du = p.global(s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
     qp_iters += st.qp_iterations;
     qp_seconds += st.qp_seconds;

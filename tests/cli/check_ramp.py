@@ -22,6 +22,8 @@ Usage: check_ramp.py CDYN SOURCE_DIR WORKDIR
     (relative 1e-16 on 20 mm): asserted to 1e-8 (the kernel's rotation test,
     test_elastic_contact, measures 7e-13 on a small mesh; the 1000 steps here, 600 in
     contact, each solving S with condition number ~1e5 at most, stay far below 1e-8).
+  - The probes' v (the rate over the last step) is the difference quotient of their u,
+    in (x, y) also at the contact nodes, whose unknowns are rotated components.
   - No penetration along the inclined normal: with the constraint at the end of the
     step (backward Euler) the gaps (a + u(a) − p)·n of contact.csv are ≥ −1e-12 mm
     (round-off of 20 mm coordinates) and pdas ends with violation exactly 0.
@@ -84,6 +86,17 @@ err_P = max(math.hypot(c * a["px"] - s_ * a["py"] - b["px"], s_ * a["px"] + c * 
 check(len(h_ramp) == len(h_flat) and same_active and max(err_E, err_F, err_P) < 1e-8,
       f"ramp = flat plane turned by 30 deg: J to {err_E:.1e}, contact force to {err_F:.1e}, "
       f"momentum to {err_P:.1e}, same active sets")
+
+# The probes' v is the displacement rate over the last step, in (x, y), so it is the
+# difference quotient of their u columns: an identity up to the rounding of u
+# (|u| ≤ 20 mm, ε|u|/dt ≈ 4e-10 mm/s; asserted to 1e-6 mm/s against |v| ~ 1e3).  The
+# probe "nearest" sits on the contact nodes, whose unknowns are the rotated (n, t)
+# components: before the rate was turned back with global(), its v was off by up to
+# 1.5e3 mm/s there.
+dt = 1e-5
+err_v = max(abs((b[f"u{c}@{pr}"] - a[f"u{c}@{pr}"]) / dt - b[f"v{c}@{pr}"])
+            for a, b in zip(h_ramp, h_ramp[1:]) for c in "xy" for pr in ("nearest", "centre"))
+check(err_v < 1e-6, f"ramp: probe v = (u^n - u^(n-1))/dt in (x, y) to {err_v:.1e} mm/s")
 
 be, _, contact = run(cdyn, scene, os.path.join(work, "ramp_be"), f"mesh.file={ramp_msh}",
                      "time.scheme=backward_euler", "output.contact_every=1")
