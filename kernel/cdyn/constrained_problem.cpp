@@ -15,12 +15,14 @@ const Eigen::VectorXd& ConstrainedProblem::full_load(double t) const {
   return cached_full_load_;
 }
 
-Eigen::VectorXd ConstrainedProblem::load(double t) const {
+const Eigen::VectorXd& ConstrainedProblem::load(double t) const {
   full_load(t);
   return cached_load_;
 }
 
-Eigen::VectorXd ConstrainedProblem::full(const Eigen::VectorXd& Uf) const { return bc->extend(global(Uf), UD); }
+Eigen::VectorXd ConstrainedProblem::full(const Eigen::VectorXd& Uf) const {
+  return R ? bc->extend(*R * Uf, UD) : bc->extend(Uf, UD);  // (no copy of Uf without R)
+}
 
 Eigen::VectorXd ConstrainedProblem::global(const Eigen::VectorXd& X) const {
   if (!R) return X;

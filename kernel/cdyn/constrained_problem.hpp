@@ -50,8 +50,9 @@ struct ConstrainedProblem {
 
   int n_free() const { return static_cast<int>(A.rows()); }
 
-  // (L(t) − A U_D)_f: the load seen by the free dofs (Rᵀ (L(t) − A U_D)_f).
-  Eigen::VectorXd load(double t) const;
+  // (L(t) − A U_D)_f: the load seen by the free dofs (Rᵀ (L(t) − A U_D)_f).  A
+  // reference to the cache: valid until load() or full_load() is called with another t.
+  const Eigen::VectorXd& load(double t) const;
 
   // The full coefficient vector P R U' + U_D (R U' = U' without a rotation).
   Eigen::VectorXd full(const Eigen::VectorXd& Uf) const;

@@ -219,8 +219,10 @@ void check_positive_definite(const SparseMatrix& S, const std::string& what) {
 QuadraticForm::QuadraticForm() = default;
 QuadraticForm::~QuadraticForm() = default;
 
-void QuadraticForm::set(const BoundQP& qp) {
+void QuadraticForm::set(const BoundQP& qp, bool same_matrices) {
+  const bool keep = same_matrices && qp_ != nullptr && D_.size() == qp.size();
   qp_ = &qp;
+  if (keep) return;  // (a pass over S saved per step: the time loop's matrices do not change)
   D_ = scaling_diagonal(qp);
   if (!qp.saddle) return;
   const SparseMatrix& C = qp.saddle->C;

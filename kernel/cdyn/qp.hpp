@@ -193,7 +193,9 @@ class QuadraticForm {
   ~QuadraticForm();
   QuadraticForm(const QuadraticForm&) = delete;
   QuadraticForm& operator=(const QuadraticForm&) = delete;
-  void set(const BoundQP& qp);
+  // same_matrices: qp's matrices are those of the last set() (CheckedMatrices::check
+  // returned false): D and C's factor are kept, only the problem is rebound.
+  void set(const BoundQP& qp, bool same_matrices = false);
   Eigen::VectorXd apply(const Eigen::VectorXd& X) const;
   double objective(const Eigen::VectorXd& X) const;  // ½ Xᵀ S X − rᵀ X
   const Eigen::VectorXd& diagonal() const { return D_; }  // scaling_diagonal(qp), computed by set()

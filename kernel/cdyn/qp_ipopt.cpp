@@ -190,9 +190,9 @@ IpoptSolver::~IpoptSolver() = default;
 
 QPResult IpoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
-  checked_.check(qp, /*positive_definite=*/true, "ipopt");
+  const bool new_matrices = checked_.check(qp, /*positive_definite=*/true, "ipopt");
   const int n = qp.size();
-  form_.set(qp);
+  form_.set(qp, !new_matrices);
   QPResult result;
   std::string detail;
   if (n == 0) {

@@ -54,9 +54,9 @@ NLoptSolver::NLoptSolver(const QPOptions& options) : options_(options) {
 
 QPResult NLoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
-  checked_.check(qp, /*positive_definite=*/true, "nlopt");
+  const bool new_matrices = checked_.check(qp, /*positive_definite=*/true, "nlopt");
   const int n = qp.size();
-  form_.set(qp);
+  form_.set(qp, !new_matrices);
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
   QPResult result;

@@ -105,7 +105,7 @@ struct PDASSolver::Impl {
 
   // Makes the cached factorizations those of qp's matrix (analysis, PD check).
   void prepare(const BoundQP& qp, bool new_matrices) {
-    form.set(qp);
+    form.set(qp, !new_matrices);
     n = qp.size();
     const bool was_saddle = saddle;
     saddle = qp.saddle.has_value();

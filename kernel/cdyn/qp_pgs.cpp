@@ -22,9 +22,9 @@ QPResult PGSSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     throw InputError(
         "pgs: projected Gauss-Seidel needs the entries of S, but the problem is given in saddle form "
         "(S = A + c B^T C^-1 B with C^-1 dense); use solver pdas or ipopt");
-  checked_.check(qp, /*positive_definite=*/true, "pgs");
+  const bool new_matrices = checked_.check(qp, /*positive_definite=*/true, "pgs");
   const int n = qp.size();
-  form_.set(qp);
+  form_.set(qp, !new_matrices);
   const SparseMatrix& S = qp.S;  // symmetric: column i is row i
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;

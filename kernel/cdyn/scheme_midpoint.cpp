@@ -25,7 +25,7 @@ class Midpoint final : public ImplicitStep {
 
   StepStats step(State& s) override {
     const double c = 1.0 / dt_;
-    const Eigen::VectorXd L = p_.load(s.t + 0.5 * dt_);
+    const Eigen::VectorXd& L = p_.load(s.t + 0.5 * dt_);
     StepStats stats;
     Eigen::VectorXd U1;
     if (at_end_) {  // 2c² M Uⁿ + 2c Bᵀ Vⁿ − ½ A Uⁿ + L

@@ -14,7 +14,7 @@
 // n = 8; the P1+ bubble changes nothing here, its sag equals P1's to 4 digits).  Expected for the dynamics with contact
 // (P1+/P0, backward Euler and midpoint_end, dt = 0.01, 100 steps): finite, the
 // constrained U^{n+1} feasible to 1e-12 (QP tolerance 1e-13 relative to |U| ≲ 1), J
-// never above J0 (1e-12·|J0|: round-off of 100 steps), QP iterations bounded (≤ 10;
+// never above J0 (5e-12·|J0|: round-off of 100 steps, 100 ε κ(S)), QP iterations bounded (≤ 10;
 // measured in docs/stability.md).
 // Very stiff / very soft body (E = 10⁴ and 10⁻⁴, ν = 0.3): the step matrix
 // S = Mc² + A is dominated by A (cond(S) ~ cond(A)) or by M; the same expectations.
@@ -85,7 +85,9 @@ RunRecord falling_block(const Mesh& mesh, const std::string& scheme_name, double
 void expect_stable(const RunRecord& r, const std::string& what) {
   ASSERT_TRUE(r.finite) << what;
   EXPECT_LE(r.max_violation, 1e-12) << what;
-  EXPECT_LE(r.growth(), 1e-12 * std::abs(r.J0)) << what;
+  // round-off of 100 steps: 100 ε κ(S) ≈ 4.8e-12 with κ(S) = 216 for the stiff block (the
+  // largest; dense eigenvalues of S = 2c²M + A/2); measured 2.0e-12 (E = 1e4, midpoint_end)
+  EXPECT_LE(r.growth(), 5e-12 * std::abs(r.J0)) << what;
   EXPECT_LE(r.max_iterations, 10) << what;
 }
 

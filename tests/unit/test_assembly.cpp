@@ -11,6 +11,7 @@
 
 #include "cdyn/assembly.hpp"
 #include "cdyn/dirichlet.hpp"
+#include "cdyn/quadrature.hpp"
 
 using namespace cdyn;
 
@@ -101,6 +102,37 @@ TEST(Assembly, ReferenceTriangleP1Stiffness) {
   // The bubble mass: ∫_T (27λ0λ1λ2)² = 729 · 2|T| · 2!2!2!/8! = 81/560 on |T| = 1/2.
   const FESpace Wb(m, Element::P1Bubble);
   EXPECT_NEAR(assemble_mass(Wb, Wb).coeff(3, 3), 729.0 * 8.0 / 40320.0, 1e-15);
+}
+
+TEST(Assembly, TheBubbleIsOrthogonalToP1InEnergy) {
+  // ∫_K ∇b = ∮_∂K b n = 0 since b = 27λ0λ1λ2 vanishes on ∂K, so with ∇φ_i constant
+  // ∫_K ∇φ_i·∇b = 0: A couples no vertex with a bubble, and assembly.cpp does not store
+  // those entries.  The premise, on the reference cell (∫_K ∇b = |det J| J⁻ᵀ ∫ ∇̂b̂, so
+  // zero there is zero on every cell), with a rule exact for ∇b (degree 2):
+  const QuadratureRule q = cell_quadrature(2, 4);
+  double integral[2] = {0.0, 0.0}, size = 0.0;
+  for (int p = 0; p < q.size(); ++p) {
+    std::array<double, 2> g[4];
+    shape_gradients(Element::P1Bubble, 2, q.points[p], g);
+    for (int k = 0; k < 2; ++k) integral[k] += q.weights[p] * g[3][k];
+    size += q.weights[p] * std::hypot(g[3][0], g[3][1]);
+  }
+  EXPECT_LE(std::hypot(integral[0], integral[1]), 1e-15 * size);
+  // The consequences on a perturbed mesh: P1+'s A is P1's A plus one diagonal entry
+  // (block, for elasticity) per bubble, the vertex block equal to P1's to round-off.
+  // (test_reference_matrices compares tr(A⁻¹M) with FreeFEM's P1b, which stores the
+  // coupling: 1e-10.)
+  const Mesh m = perturbed_square(5);
+  const int cells = m.n_cells(), nv = m.n_vertices();
+  for (int components : {1, 2}) {
+    const FESpace P1(m, Element::P1, components), P1b(m, Element::P1Bubble, components);
+    const SparseMatrix A1 = components == 1 ? assemble_laplace(P1) : assemble_elasticity(P1, 3.0, 1.0);
+    const SparseMatrix Ab = components == 1 ? assemble_laplace(P1b) : assemble_elasticity(P1b, 3.0, 1.0);
+    EXPECT_EQ(Ab.nonZeros(), A1.nonZeros() + cells * components * components) << components;
+    const int n1 = nv * components;  // vertex dofs first (fe_space.hpp)
+    const double defect = (Eigen::MatrixXd(Ab).topLeftCorner(n1, n1) - Eigen::MatrixXd(A1)).norm();
+    EXPECT_LE(defect, 1e-14 * A1.norm()) << components;
+  }
 }
 
 TEST(Assembly, MassAndStiffnessAreSymmetric) {
