@@ -9,8 +9,9 @@ contact yet: one forward/back solve per step, the floor of a step), and with --s
 the steps 1–270, which contain the impact at t ≈ 0.258: then the table adds the QP time
 per step over the steps with an active constraint (history.csv's solve_s where
 active > 0: PDAS iterations, CG solves, row updates and refactorizations as the contact
-zone grows).  Prints a table and the least-squares exponent p of time/step ∝ N^p over
-the sizes (target p ≤ 1.2), with N the free dofs.
+zone grows).  Prints a table (with the time per dof and step, which a step of O(N)
+work would keep constant), the least-squares exponent p of time/step ∝ N^p over the
+sizes (target p ≤ 1.2), with N the free dofs, and the exponents between consecutive sizes.
 
 Usage:  /usr/bin/python3 bench/bench_scaling.py BUILD/apps/cdyn [WORKDIR] [--n 40,80,160,320,640] [--steps 20]
 """
@@ -59,8 +60,8 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     print(f"load average at start: {os.getloadavg()[0]:.2f}")
-    print(f"| n | free dofs | steps | s/step | QP s/step | contact steps | QP s/step in contact | whole process (s) | peak RSS (MB) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print(f"| n | free dofs | steps | s/step | ns per dof and step | QP s/step | contact steps | QP s/step in contact | whole process (s) | peak RSS (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     points, qpoints, cpoints = [], [], []
     for n in [int(v) for v in a.n.split(",")]:
         s, rss, wall, contact = run(a.cdyn, n, a.steps, a.work)
@@ -70,11 +71,13 @@ def main():
         if contact:
             cpoints.append((s["n_free"], sum(contact) / len(contact)))
             in_contact = f"{cpoints[-1][1] * 1e3:.2f} ms"
-        print(f"| {n} | {s['n_free']} | {s['n_steps']} | {s['s_per_step'] * 1e3:.2f} ms | "
+        print(f"| {n} | {s['n_free']} | {s['n_steps']} | {s['s_per_step'] * 1e3:.2f} ms | {s['s_per_step'] / s['n_free'] * 1e9:.1f} | "
               f"{s['qp_s_per_step'] * 1e3:.2f} ms | {len(contact)} | {in_contact} | {wall:.1f} | {rss / 1024:.0f} |",
               flush=True)
     if len(points) >= 2:
         print(f"fitted exponent: time/step ~ N^{fit(points):.2f} (QP part N^{fit(qpoints):.2f}); target <= 1.2")
+        local = [f"{fit(points[k:k + 2]):.2f}" for k in range(len(points) - 1)]
+        print(f"local exponents between consecutive sizes: {', '.join(local)}")
     if len(cpoints) >= 2:
         print(f"fitted exponent of the QP time per contact step: N^{fit(cpoints):.2f}")
     print(f"load average at end: {os.getloadavg()[0]:.2f}")
