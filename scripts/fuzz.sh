@@ -26,16 +26,7 @@ corpus_root=${CORPUS_DIR:-$build/corpus}
 
 # clang and its libFuzzer runtime are not needed by the build or the tests, so
 # scripts/setup.sh leaves them out; this script installs them when missing (Debian 12).
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO=sudo
-  echo "fuzz.sh: installing ${missing[*]}"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+"$root/scripts/install_missing.sh" fuzz.sh clang libclang-rt-14-dev
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" \
       -DCDYN_SANITIZE=ON -DCDYN_FUZZ=ON -DCDYN_EXAMPLES=OFF >/dev/null
