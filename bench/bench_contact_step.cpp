@@ -38,7 +38,7 @@
 #include <memory>
 #include <string>
 
-#include "cdyn/qp_pdas.hpp"
+#include "cdyn/qp/pdas/pdas.hpp"
 #include "seed_membrane.hpp"
 
 namespace {

@@ -18,7 +18,7 @@
 #include <map>
 #include <memory>
 
-#include "cdyn/qp_pdas.hpp"
+#include "cdyn/qp/pdas/pdas.hpp"
 #include "seed_membrane.hpp"
 
 namespace {

@@ -4,8 +4,8 @@
 // obstacle (the linear reference: the same S, no bounds).
 #pragma once
 
-#include "cdyn/scalar_wave.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
 
 namespace cdyn::bench {
 

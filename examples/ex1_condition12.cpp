@@ -17,11 +17,11 @@
 //
 // Files to read next to it: kernel/cdyn/fe_space.hpp, element.hpp, dirichlet.hpp,
 // mass_model.hpp (mixed_blocks), wellposedness.hpp, docs/semi_discretization.md.
-#include <cdyn/dirichlet.hpp>
-#include <cdyn/fe_space.hpp>
-#include <cdyn/mass_model.hpp>
-#include <cdyn/mesh.hpp>
-#include <cdyn/wellposedness.hpp>
+#include <cdyn/fe/dirichlet.hpp>
+#include <cdyn/fe/fe_space.hpp>
+#include <cdyn/mass/mass_model.hpp>
+#include <cdyn/mesh/mesh.hpp>
+#include <cdyn/wellposedness/condition12.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>

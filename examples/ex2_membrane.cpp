@@ -21,9 +21,9 @@
 //
 // Files: kernel/cdyn/scalar_wave.hpp, constrained_problem.hpp, mass_model.hpp,
 // time_scheme.hpp, qp.hpp; docs/semi_discretization.md, docs/schemes.md.
-#include <cdyn/qp.hpp>
-#include <cdyn/scalar_wave.hpp>
-#include <cdyn/time_scheme.hpp>
+#include <cdyn/qp/step_solver.hpp>
+#include <cdyn/problems/scalar_wave.hpp>
+#include <cdyn/schemes/time_scheme.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -26,11 +26,11 @@
 // Files: kernel/cdyn/bar_exact.hpp, scalar_wave.hpp, mass_model.hpp, mass_classical.hpp,
 // mass_redistribution.hpp, norms.hpp; docs/bar_impact.md.
 #include <algorithm>
-#include <cdyn/bar_exact.hpp>
-#include <cdyn/norms.hpp>
-#include <cdyn/qp.hpp>
-#include <cdyn/scalar_wave.hpp>
-#include <cdyn/time_scheme.hpp>
+#include <cdyn/exact/bar_exact.hpp>
+#include <cdyn/fe/norms.hpp>
+#include <cdyn/qp/step_solver.hpp>
+#include <cdyn/problems/scalar_wave.hpp>
+#include <cdyn/schemes/time_scheme.hpp>
 #include <cmath>
 #include <cstdio>
 #include <string>

@@ -22,10 +22,12 @@
 // Files: kernel/cdyn/qp.hpp (StepSolver, BoundQP, QPResult, the KKT measure,
 // QuadraticForm, finish_result), qp_pgs.hpp (the kernel's Gauss–Seidel), docs/qp.md.
 #include <algorithm>
-#include <cdyn/error.hpp>
-#include <cdyn/qp.hpp>
-#include <cdyn/scalar_wave.hpp>
-#include <cdyn/time_scheme.hpp>
+#include <cdyn/base/error.hpp>
+#include <cdyn/qp/checks.hpp>
+#include <cdyn/qp/kkt.hpp>
+#include <cdyn/qp/step_solver.hpp>
+#include <cdyn/problems/scalar_wave.hpp>
+#include <cdyn/schemes/time_scheme.hpp>
 #include <cmath>
 #include <cstdio>
 

@@ -20,9 +20,9 @@
 // docs/outputs.md.
 #include <cdyn/fields_output.hpp>
 #include <cdyn/gmsh_mesh.hpp>
-#include <cdyn/qp.hpp>
-#include <cdyn/scalar_wave.hpp>
-#include <cdyn/time_scheme.hpp>
+#include <cdyn/qp/step_solver.hpp>
+#include <cdyn/problems/scalar_wave.hpp>
+#include <cdyn/schemes/time_scheme.hpp>
 #include <cstdio>
 #include <exception>
 #include <string>

@@ -13,8 +13,8 @@
 #include <sstream>
 #include <string>
 
-#include "cdyn/error.hpp"
-#include "cdyn/expression.hpp"
+#include "cdyn/base/error.hpp"
+#include "expression.hpp"
 #include "cdyn/gmsh_mesh.hpp"
 #include "scene.hpp"
 #include "simulation.hpp"

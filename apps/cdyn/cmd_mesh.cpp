@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cdyn/gmsh_mesh.hpp"
-#include "cdyn/mesh.hpp"
+#include "cdyn/mesh/mesh.hpp"
 #include "commands.hpp"
 
 namespace cdyn::app {

@@ -27,7 +27,7 @@
 #include <optional>
 
 #include "cdyn/atomic_file.hpp"
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "cdyn/fields_output.hpp"
 #include "commands.hpp"
 #include "contact_history.hpp"

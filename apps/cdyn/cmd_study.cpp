@@ -25,7 +25,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "commands.hpp"
 #include "embedded_scripts.hpp"
 #include "python_script.hpp"

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "cdyn/error.hpp"
-#include "cdyn/mass_model.hpp"
-#include "cdyn/wellposedness.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/mass/mass_model.hpp"
+#include "cdyn/wellposedness/condition12.hpp"
 #include "commands.hpp"
 #include "simulation.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cdyn/wellposedness.hpp"
+#include "cdyn/wellposedness/condition12.hpp"
 #include <string>
 #include <vector>
 

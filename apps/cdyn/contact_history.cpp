@@ -7,8 +7,8 @@
 #include <map>
 #include <numbers>
 
-#include "cdyn/elastic_contact.hpp"
-#include "cdyn/error.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/base/error.hpp"
 
 namespace cdyn::app {
 

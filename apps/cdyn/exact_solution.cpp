@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "cdyn/bar_exact.hpp"
-#include "cdyn/error.hpp"
-#include "cdyn/expression.hpp"
-#include "cdyn/norms.hpp"
+#include "cdyn/exact/bar_exact.hpp"
+#include "cdyn/base/error.hpp"
+#include "expression.hpp"
+#include "cdyn/fe/norms.hpp"
 
 namespace cdyn::app {
 

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "cdyn/version.hpp"
 #include "commands.hpp"
 

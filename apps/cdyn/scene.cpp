@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "default_scene.hpp"
 
 namespace cdyn::app {

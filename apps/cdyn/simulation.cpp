@@ -6,12 +6,12 @@
 #include <limits>
 #include <regex>
 
-#include "cdyn/elastic_contact.hpp"
-#include "cdyn/error.hpp"
-#include "cdyn/expression.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/base/error.hpp"
+#include "expression.hpp"
 #include "cdyn/gmsh_mesh.hpp"
-#include "cdyn/oscillator.hpp"
-#include "cdyn/scalar_wave.hpp"
+#include "cdyn/problems/oscillator.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
 
 namespace cdyn::app {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/constrained_problem.hpp"
-#include "cdyn/mesh.hpp"
-#include "cdyn/point_location.hpp"
-#include "cdyn/qp.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/mesh/mesh.hpp"
+#include "cdyn/mesh/point_location.hpp"
+#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
 #include "scene.hpp"
 
 namespace cdyn::app {

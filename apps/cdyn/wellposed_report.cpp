@@ -4,8 +4,8 @@
 // limit report why it was not computed instead of a number.
 #include <cstdio>
 
-#include "cdyn/error.hpp"
-#include "cdyn/wellposedness.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/wellposedness/condition12.hpp"
 #include "commands.hpp"
 #include "simulation.hpp"
 

@@ -10,7 +10,7 @@
 #include <system_error>
 #include <vector>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 
 namespace cdyn {
 

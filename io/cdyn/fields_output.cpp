@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "cdyn/atomic_file.hpp"
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 
 namespace cdyn {
 

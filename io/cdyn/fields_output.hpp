@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/constrained_problem.hpp"
-#include "cdyn/mesh.hpp"
+#include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/mesh/mesh.hpp"
 
 namespace cdyn {
 

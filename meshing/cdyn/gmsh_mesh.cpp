@@ -34,7 +34,7 @@
 #include <utility>
 #include <vector>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 
 namespace cdyn {
 namespace {

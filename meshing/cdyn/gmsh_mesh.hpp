@@ -18,7 +18,7 @@
 
 #include <string>
 
-#include "cdyn/mesh.hpp"
+#include "cdyn/mesh/mesh.hpp"
 
 namespace cdyn {
 

@@ -12,9 +12,9 @@
 #include <string>
 
 #include "cdyn/atomic_file.hpp"
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "cdyn/fields_output.hpp"
-#include "cdyn/scalar_wave.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
 
 namespace fs = std::filesystem;
 using namespace cdyn;

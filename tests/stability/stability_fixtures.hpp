@@ -13,7 +13,7 @@
 #include <string>
 
 #include "../unit/scheme_fixtures.hpp"
-#include "cdyn/bar_exact.hpp"
+#include "cdyn/exact/bar_exact.hpp"
 
 namespace cdyn::stability {
 

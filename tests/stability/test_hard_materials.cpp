@@ -24,7 +24,7 @@
 
 #include <Eigen/SparseCholesky>
 
-#include "cdyn/elastic_contact.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
 #include "stability_fixtures.hpp"
 
 using namespace cdyn;

@@ -30,7 +30,7 @@
 // g·dt² and g·dt).
 #include <gtest/gtest.h>
 
-#include "cdyn/oscillator.hpp"
+#include "cdyn/problems/oscillator.hpp"
 #include "stability_fixtures.hpp"
 
 using namespace cdyn;

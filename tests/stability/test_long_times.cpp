@@ -33,7 +33,7 @@
 // 2.2e-11).  "J ≤ J0" for midpoint_end: the same accumulated bound.
 #include <gtest/gtest.h>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "stability_fixtures.hpp"
 
 using namespace cdyn;

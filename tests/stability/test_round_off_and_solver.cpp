@@ -21,7 +21,7 @@
 // (the caller can and must check it; docs/stability.md).
 #include <gtest/gtest.h>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "stability_fixtures.hpp"
 
 using namespace cdyn;

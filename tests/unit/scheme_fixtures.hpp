@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "cdyn/scalar_wave.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
 
 namespace cdyn::testing {
 

@@ -9,9 +9,9 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
-#include "cdyn/assembly.hpp"
-#include "cdyn/dirichlet.hpp"
-#include "cdyn/quadrature.hpp"
+#include "cdyn/fe/assembly.hpp"
+#include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/fe/quadrature.hpp"
 
 using namespace cdyn;
 

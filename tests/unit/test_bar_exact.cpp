@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/bar_exact.hpp"
-#include "cdyn/norms.hpp"
-#include "cdyn/scalar_wave.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "cdyn/exact/bar_exact.hpp"
+#include "cdyn/fe/norms.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
 
 using namespace cdyn;
 

@@ -6,9 +6,9 @@
 
 #include <iostream>
 
-#include "cdyn/condensation.hpp"
-#include "cdyn/implicit_step.hpp"
-#include "cdyn/qp_pdas.hpp"
+#include "cdyn/qp/condensation.hpp"
+#include "cdyn/schemes/step_qp_scheme.hpp"
+#include "cdyn/qp/pdas/pdas.hpp"
 #include "scheme_fixtures.hpp"
 
 namespace {

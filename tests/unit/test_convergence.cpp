@@ -14,9 +14,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "cdyn/assembly.hpp"
-#include "cdyn/dirichlet.hpp"
-#include "cdyn/norms.hpp"
+#include "cdyn/fe/assembly.hpp"
+#include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/fe/norms.hpp"
 
 using namespace cdyn;
 using std::numbers::pi;

@@ -25,11 +25,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cdyn/elastic_contact.hpp"
-#include "cdyn/error.hpp"
-#include "cdyn/mass_rotated.hpp"
-#include "cdyn/time_scheme.hpp"
-#include "cdyn/wellposedness.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/mass/rotated.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
+#include "cdyn/wellposedness/condition12.hpp"
 
 using namespace cdyn;
 

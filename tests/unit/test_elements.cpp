@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "cdyn/element.hpp"
+#include "cdyn/fe/element.hpp"
 
 using namespace cdyn;
 

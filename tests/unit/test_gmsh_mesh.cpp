@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
-#include "cdyn/mesh.hpp"
+#include "cdyn/mesh/mesh.hpp"
 
 namespace fs = std::filesystem;
 using cdyn::Mesh;

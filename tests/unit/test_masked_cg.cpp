@@ -13,7 +13,7 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "cdyn/masked_cg.hpp"
+#include "cdyn/linalg/masked_cg.hpp"
 
 namespace {
 

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/error.hpp"
-#include "cdyn/mass_model.hpp"
-#include "cdyn/mass_redistribution.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/mass/mass_model.hpp"
+#include "cdyn/mass/redistribution.hpp"
 
 using namespace cdyn;
 using Eigen::MatrixXd;

@@ -2,9 +2,9 @@
 // boundary parts, and FreeFEM's square(n,n) numbering.
 #include <gtest/gtest.h>
 
-#include "cdyn/cell_geometry.hpp"
-#include "cdyn/error.hpp"
-#include "cdyn/fe_space.hpp"
+#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/fe/fe_space.hpp"
 
 using namespace cdyn;
 

@@ -18,12 +18,12 @@
 #include <sstream>
 #include <string>
 
-#include "cdyn/assembly.hpp"
-#include "cdyn/dirichlet.hpp"
-#include "cdyn/fe_space.hpp"
-#include "cdyn/mesh.hpp"
-#include "cdyn/qp.hpp"
-#include "cdyn/qp_pdas.hpp"
+#include "cdyn/fe/assembly.hpp"
+#include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/fe/fe_space.hpp"
+#include "cdyn/mesh/mesh.hpp"
+#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/qp/pdas/pdas.hpp"
 
 namespace {
 

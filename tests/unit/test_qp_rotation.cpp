@@ -12,9 +12,9 @@
 #include <limits>
 #include <random>
 
-#include "cdyn/error.hpp"
-#include "cdyn/qp.hpp"
-#include "cdyn/qp_rotation.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/problems/nodal_rotation.hpp"
 
 namespace {
 

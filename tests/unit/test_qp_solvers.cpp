@@ -17,9 +17,9 @@
 #include <limits>
 #include <random>
 
-#include "cdyn/error.hpp"
-#include "cdyn/qp.hpp"
-#include "cdyn/qp_pdas.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/qp/pdas/pdas.hpp"
 
 namespace {
 

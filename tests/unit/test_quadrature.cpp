@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "cdyn/quadrature.hpp"
+#include "cdyn/fe/quadrature.hpp"
 
 using cdyn::cell_quadrature;
 

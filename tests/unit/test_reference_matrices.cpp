@@ -16,7 +16,7 @@
 #include <map>
 #include <sstream>
 
-#include "cdyn/scalar_wave.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
 
 using namespace cdyn;
 

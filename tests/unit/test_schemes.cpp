@@ -12,9 +12,9 @@
 
 #include <cmath>
 
-#include "cdyn/error.hpp"
-#include "cdyn/scalar_wave.hpp"
-#include "cdyn/time_scheme.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/problems/scalar_wave.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
 #include "scheme_fixtures.hpp"
 
 using namespace cdyn;

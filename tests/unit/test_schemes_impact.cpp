@@ -17,8 +17,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "cdyn/error.hpp"
-#include "cdyn/oscillator.hpp"
+#include "cdyn/base/error.hpp"
+#include "cdyn/problems/oscillator.hpp"
 #include "scheme_fixtures.hpp"
 
 using namespace cdyn;

@@ -14,7 +14,7 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "cdyn/symmetric_gauss_seidel.hpp"
+#include "cdyn/linalg/symmetric_gauss_seidel.hpp"
 
 namespace {
 

@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/error.hpp"
+#include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
-#include "cdyn/mass_model.hpp"
-#include "cdyn/wellposedness.hpp"
+#include "cdyn/mass/mass_model.hpp"
+#include "cdyn/wellposedness/condition12.hpp"
 
 using namespace cdyn;
 

@@ -1,0 +1,49 @@
+// expression.cpp — muParser-backed fields f(x, y, t).
+#include "expression.hpp"
+
+#include <memory>
+#include <muParser.h>
+#include <numbers>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+namespace {
+
+// The parser reads its variables by address, so each field owns its parser and the
+// three variables together.  muParser is not re-entrant: a field must not be
+// evaluated from two threads at once.
+struct Evaluator {
+  mu::Parser parser;
+  double x = 0.0, y = 0.0, t = 0.0;
+};
+
+}  // namespace
+
+Field parse_expression(const std::string& text, const std::string& key) {
+  auto e = std::make_shared<Evaluator>();
+  try {
+    e->parser.DefineVar("x", &e->x);
+    e->parser.DefineVar("y", &e->y);
+    e->parser.DefineVar("t", &e->t);
+    e->parser.DefineConst("pi", std::numbers::pi);
+    e->parser.SetExpr(text);
+    e->parser.Eval();  // compile now, so that errors surface at parse time
+  } catch (const mu::Parser::exception_type& err) {
+    throw InputError(key + ": bad expression '" + text + "': " + err.GetMsg());
+  }
+  // muParser can also fail while evaluating (a compiled expression whose stack
+  // evaluation it refuses); that too is the text's fault, reported as bad input with
+  // the key, never as a foreign exception type escaping to the caller.
+  return [e, text, key](double x, double y, double t) {
+    e->x = x, e->y = y, e->t = t;
+    try {
+      return e->parser.Eval();
+    } catch (const mu::Parser::exception_type& err) {
+      throw InputError(key + ": bad expression '" + text + "': " + err.GetMsg());
+    }
+  };
+}
+
+}  // namespace cdyn

@@ -1,0 +1,50 @@
+// assembly.hpp — the matrices and vectors of the seed's semi-discretization (eq. 10):
+//
+//   A_ij = a(φ_i, φ_j)    stiffness: the Laplacian ∫∇φ_i·∇φ_j, or plane-strain
+//                         elasticity ∫ λ div φ_i div φ_j + 2μ ε(φ_i):ε(φ_j)
+//   B_ij = ∫ ψ_i φ_j      mixed mass, rows in H^h (velocity), columns in W^h
+//   C_ij = ∫ ψ_i ψ_j      mass of H^h  (= assemble_mass(H, H))
+//   L_i  = l(φ_i) = ∫ f φ_i
+//
+// All integrals use a quadrature rule exact for the polynomial integrand
+// (quadrature.hpp), e.g. degree 6 for the mass of the P1+ bubble on triangles.
+// Matrices are Eigen column-major sparse matrices (plain CSC), as CHOLMOD and
+// UMFPACK take them.  Dof numbering is the spaces' (fe_space.hpp); vector-valued
+// spaces give block matrices with the components interleaved.
+#pragma once
+
+#include <Eigen/Sparse>
+
+#include "cdyn/fe/fe_space.hpp"
+
+namespace cdyn {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// B_ij = ∫ ψ_i · φ_j, ψ_i in `rows`, φ_j in `cols` (same mesh, same number of
+// components; componentwise product for vector spaces).  C = assemble_mass(H, H).
+SparseMatrix assemble_mass(const FESpace& rows, const FESpace& cols);
+
+// A_ij = ∫ ∇φ_i · ∇φ_j on a scalar space (scale by E or c² outside).
+SparseMatrix assemble_laplace(const FESpace& W);
+
+// Plane-strain elasticity on a 2-component space of a 2D mesh:
+// A_ij = ∫ λ div φ_i div φ_j + 2μ ε(φ_i) : ε(φ_j).
+SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu);
+
+// L_i = ∫ f(x, y, t) φ_i, one field per component of W.  The rule has degree
+// 2·deg(W) + 2 so that the quadrature error is below the discretization error of
+// smooth data.
+Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t = 0.0);
+Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t = 0.0);
+
+// Boundary load (the Neumann term of l, seed eq. 3): L_i = ∫_{Γ_N} g(x, y, t) · φ_i ds
+// over the boundary facets of the given parts (indices into mesh.part_names), one field
+// per component of W.  Each facet is integrated as an edge of its cell, with the
+// cell's basis (so every element is handled alike; bubbles vanish there); 1D facets
+// are points, where ∫ g φ_i ds is the value g φ_i.  Gauss–Legendre rule of degree
+// 2·deg(W) + 2 along the edge, as assemble_load.
+Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>& parts, const std::vector<Field>& g,
+                                       double t = 0.0);
+
+}  // namespace cdyn

@@ -1,0 +1,146 @@
+// element.cpp — basis functions of P0, P1, P1+, P2 in barycentric coordinates.
+#include "cdyn/fe/element.hpp"
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+namespace {
+
+using Vec2 = std::array<double, 2>;
+
+// Barycentric coordinates of the reference cell and their (constant) gradients.
+struct Barycentric {
+  double l[3];
+  Vec2 dl[3];
+  Barycentric(int dim, const Vec2& xi) {
+    if (dim == 1) {
+      l[0] = 1.0 - xi[0], l[1] = xi[0], l[2] = 0.0;
+      dl[0] = {-1.0, 0.0}, dl[1] = {1.0, 0.0}, dl[2] = {0.0, 0.0};
+    } else {
+      l[0] = 1.0 - xi[0] - xi[1], l[1] = xi[0], l[2] = xi[1];
+      dl[0] = {-1.0, -1.0}, dl[1] = {1.0, 0.0}, dl[2] = {0.0, 1.0};
+    }
+  }
+};
+
+// Local edges of the triangle, in the order of the P2 edge dofs.
+constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+
+Vec2 axpy(double a, const Vec2& x, double b, const Vec2& y) {
+  return {a * x[0] + b * y[0], a * x[1] + b * y[1]};
+}
+
+}  // namespace
+
+std::string to_string(Element e) {
+  switch (e) {
+    case Element::P0: return "P0";
+    case Element::P1: return "P1";
+    case Element::P1Bubble: return "P1+";
+    case Element::P2: return "P2";
+  }
+  return "?";
+}
+
+Element element_from_string(const std::string& name) {
+  if (name == "P0") return Element::P0;
+  if (name == "P1") return Element::P1;
+  if (name == "P1+" || name == "P1b") return Element::P1Bubble;
+  if (name == "P2") return Element::P2;
+  throw InputError("unknown finite element '" + name + "' (expected P0, P1, P1+ or P2)");
+}
+
+int local_dofs(Element e, int dim) {
+  switch (e) {
+    case Element::P0: return 1;
+    case Element::P1: return dim + 1;
+    case Element::P1Bubble: return dim + 2;
+    case Element::P2: return dim == 1 ? 3 : 6;
+  }
+  return 0;
+}
+
+int polynomial_degree(Element e, int dim) {
+  switch (e) {
+    case Element::P0: return 0;
+    case Element::P1: return 1;
+    case Element::P1Bubble: return dim + 1;
+    case Element::P2: return 2;
+  }
+  return 0;
+}
+
+void shape_values(Element e, int dim, const Vec2& xi, double* v) {
+  const Barycentric b(dim, xi);
+  const int nv = dim + 1;
+  switch (e) {
+    case Element::P0:
+      v[0] = 1.0;
+      return;
+    case Element::P1:
+      for (int k = 0; k < nv; ++k) v[k] = b.l[k];
+      return;
+    case Element::P1Bubble:
+      for (int k = 0; k < nv; ++k) v[k] = b.l[k];
+      v[nv] = dim == 1 ? 4.0 * b.l[0] * b.l[1] : 27.0 * b.l[0] * b.l[1] * b.l[2];
+      return;
+    case Element::P2:
+      for (int k = 0; k < nv; ++k) v[k] = b.l[k] * (2.0 * b.l[k] - 1.0);
+      if (dim == 1) {
+        v[2] = 4.0 * b.l[0] * b.l[1];
+      } else {
+        for (int k = 0; k < 3; ++k) v[3 + k] = 4.0 * b.l[kEdge[k][0]] * b.l[kEdge[k][1]];
+      }
+      return;
+  }
+}
+
+void shape_gradients(Element e, int dim, const Vec2& xi, Vec2* g) {
+  const Barycentric b(dim, xi);
+  const int nv = dim + 1;
+  switch (e) {
+    case Element::P0:
+      g[0] = {0.0, 0.0};
+      return;
+    case Element::P1:
+      for (int k = 0; k < nv; ++k) g[k] = b.dl[k];
+      return;
+    case Element::P1Bubble:
+      for (int k = 0; k < nv; ++k) g[k] = b.dl[k];
+      if (dim == 1) {
+        g[nv] = axpy(4.0 * b.l[1], b.dl[0], 4.0 * b.l[0], b.dl[1]);
+      } else {
+        // ∇(27 λ0λ1λ2) = 27 (λ1λ2 ∇λ0 + λ0λ2 ∇λ1 + λ0λ1 ∇λ2)
+        const Vec2 g01 = axpy(b.l[1] * b.l[2], b.dl[0], b.l[0] * b.l[2], b.dl[1]);
+        g[nv] = axpy(27.0, g01, 27.0 * b.l[0] * b.l[1], b.dl[2]);
+      }
+      return;
+    case Element::P2:
+      for (int k = 0; k < nv; ++k) g[k] = {(4.0 * b.l[k] - 1.0) * b.dl[k][0], (4.0 * b.l[k] - 1.0) * b.dl[k][1]};
+      if (dim == 1) {
+        g[2] = axpy(4.0 * b.l[1], b.dl[0], 4.0 * b.l[0], b.dl[1]);
+      } else {
+        for (int k = 0; k < 3; ++k) {
+          const int i = kEdge[k][0], j = kEdge[k][1];
+          g[3 + k] = axpy(4.0 * b.l[j], b.dl[i], 4.0 * b.l[i], b.dl[j]);
+        }
+      }
+      return;
+  }
+}
+
+std::array<double, 2> local_node(Element e, int dim, int k) {
+  const Vec2 vertex[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
+  const Vec2 centroid = dim == 1 ? Vec2{0.5, 0.0} : Vec2{1.0 / 3.0, 1.0 / 3.0};
+  const int nv = dim + 1;
+  if (e == Element::P0) return centroid;
+  if (k < nv) return vertex[k];
+  if (e == Element::P1Bubble) return centroid;
+  if (dim == 1) return {0.5, 0.0};
+  const Vec2& a = vertex[kEdge[k - 3][0]];
+  const Vec2& b = vertex[kEdge[k - 3][1]];
+  return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+}
+
+}  // namespace cdyn

@@ -1,0 +1,179 @@
+// sparse_cholesky.cpp — CHOLMOD's analysis, factorization, solve and row updates,
+// reading Eigen's compressed columns in place.
+#include "cdyn/linalg/sparse_cholesky.hpp"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+struct SparseCholesky::Impl {
+  cholmod_common common;
+  cholmod_factor* symbolic = nullptr;  // the analysis, kept to start each factorization from
+  cholmod_factor* L = nullptr;         // the current numeric factor
+  std::vector<int> outer, inner;       // pattern of the analysed matrix
+  std::vector<int> position;           // position[i] = row of L holding original unknown i
+  mutable cholmod_dense* X = nullptr;  // solve workspaces (cholmod_solve2)
+  mutable cholmod_dense* Y = nullptr;
+  mutable cholmod_dense* E = nullptr;
+
+  Impl() {
+    cholmod_start(&common);
+    common.print = 0;
+    common.error_handler = nullptr;
+    // LLᵀ also in the simplicial case: LDLᵀ would factorize an indefinite S without
+    // complaint, LLᵀ stops at the first non-positive pivot.  (cholmod_rowadd/rowdel
+    // convert the factor to simplicial LDLᵀ themselves.)
+    common.final_ll = 1;
+  }
+  ~Impl() {
+    free_factor(L);
+    free_factor(symbolic);
+    cholmod_free_dense(&X, &common);
+    cholmod_free_dense(&Y, &common);
+    cholmod_free_dense(&E, &common);
+    cholmod_finish(&common);
+  }
+  void free_factor(cholmod_factor*& F) {
+    if (F) cholmod_free_factor(&F, &common);
+    F = nullptr;
+  }
+  // A view of S, lower triangle used (stype = −1); the arrays are Eigen's.
+  static cholmod_sparse view(const SparseMatrix& S) {
+    cholmod_sparse A;
+    std::memset(&A, 0, sizeof A);
+    A.nrow = S.rows();
+    A.ncol = S.cols();
+    A.nzmax = S.nonZeros();
+    A.p = const_cast<int*>(S.outerIndexPtr());
+    A.i = const_cast<int*>(S.innerIndexPtr());
+    A.x = const_cast<double*>(S.valuePtr());
+    A.stype = -1;
+    A.itype = CHOLMOD_INT;
+    A.xtype = CHOLMOD_REAL;
+    A.dtype = CHOLMOD_DOUBLE;
+    A.sorted = 1;
+    A.packed = 1;
+    return A;
+  }
+  void check(const char* what) const {
+    if (common.status < CHOLMOD_OK)
+      throw NumericalError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) + ")");
+  }
+};
+
+SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+SparseCholesky::~SparseCholesky() = default;
+
+void SparseCholesky::analyze(const SparseMatrix& S) {
+  if (!S.isCompressed()) throw InputError("SparseCholesky: the matrix must be compressed");
+  Impl& m = *impl_;
+  m.free_factor(m.L);
+  m.free_factor(m.symbolic);
+  cholmod_sparse A = Impl::view(S);
+  m.symbolic = cholmod_analyze(&A, &m.common);
+  m.check("analyze");
+  m.outer.assign(S.outerIndexPtr(), S.outerIndexPtr() + S.outerSize() + 1);
+  m.inner.assign(S.innerIndexPtr(), S.innerIndexPtr() + S.nonZeros());
+  const int n = static_cast<int>(S.rows());
+  const int* perm = static_cast<const int*>(m.symbolic->Perm);
+  m.position.assign(n, 0);
+  for (int k = 0; k < n; ++k) m.position[perm[k]] = k;
+}
+
+bool SparseCholesky::analyzed_for(const SparseMatrix& S) const {
+  const Impl& m = *impl_;
+  return m.symbolic && S.isCompressed() && static_cast<long>(m.outer.size()) == S.outerSize() + 1 &&
+         static_cast<long>(m.inner.size()) == S.nonZeros() &&
+         std::equal(m.outer.begin(), m.outer.end(), S.outerIndexPtr()) &&
+         std::equal(m.inner.begin(), m.inner.end(), S.innerIndexPtr());
+}
+
+int SparseCholesky::factorize(const SparseMatrix& S) {
+  Impl& m = *impl_;
+  if (!analyzed_for(S)) throw InputError("SparseCholesky: factorize() with a pattern that was not analysed");
+  m.free_factor(m.L);
+  m.L = cholmod_copy_factor(m.symbolic, &m.common);
+  m.check("copy_factor");
+  cholmod_sparse A = Impl::view(S);
+  cholmod_factorize(&A, m.L, &m.common);
+  if (m.common.status == CHOLMOD_NOT_POSDEF) {
+    // L->minor is the column (in the permuted order) where the factorization stopped
+    const int k = static_cast<int>(m.L->minor);
+    const int* perm = static_cast<const int*>(m.symbolic->Perm);
+    m.free_factor(m.L);
+    return perm && k >= 0 && k < static_cast<int>(S.rows()) ? perm[k] : std::max(k, 0);
+  }
+  m.check("factorize");
+  return -1;
+}
+
+bool SparseCholesky::factorized() const { return impl_->L != nullptr; }
+
+Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
+  Impl& m = *impl_;
+  cholmod_dense B;
+  std::memset(&B, 0, sizeof B);
+  B.nrow = b.size();
+  B.ncol = 1;
+  B.nzmax = b.size();
+  B.d = b.size();
+  B.x = const_cast<double*>(b.data());
+  B.xtype = CHOLMOD_REAL;
+  B.dtype = CHOLMOD_DOUBLE;
+  cholmod_solve2(CHOLMOD_A, m.L, &B, nullptr, &m.X, nullptr, &m.Y, &m.E, &m.common);
+  m.check("solve");
+  return Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(m.X->x), b.size());
+}
+
+void SparseCholesky::replace_by_identity(int i) {
+  Impl& m = *impl_;
+  cholmod_rowdel(m.position[i], nullptr, m.L, &m.common);
+  m.check("rowdel");
+}
+
+double SparseCholesky::modification_flops() const { return impl_->common.modfl; }
+
+bool SparseCholesky::restore(int i, const SparseMatrix& S, const std::vector<char>& keep) {
+  Impl& m = *impl_;
+  const int n = static_cast<int>(S.rows());
+  int count = 0;
+  for (SparseMatrix::InnerIterator it(S, i); it; ++it) count += keep[it.row()] ? 1 : 0;
+  cholmod_sparse* R = cholmod_allocate_sparse(n, 1, count, /*sorted=*/0, /*packed=*/1, /*stype=*/0,
+                                              CHOLMOD_REAL, &m.common);
+  m.check("allocate_sparse");
+  int* Rp = static_cast<int*>(R->p);
+  int* Ri = static_cast<int*>(R->i);
+  double* Rx = static_cast<double*>(R->x);
+  Rp[0] = 0;
+  int p = 0;
+  // column i of P S Pᵀ: entry (position[row], position[i]) = S(row, i)
+  for (SparseMatrix::InnerIterator it(S, i); it; ++it)
+    if (keep[it.row()]) {
+      Ri[p] = m.position[it.row()];
+      Rx[p] = it.value();
+      ++p;
+    }
+  Rp[1] = p;
+  cholmod_rowadd(m.position[i], R, m.L, &m.common);
+  cholmod_free_sparse(&R, &m.common);
+  if (m.common.status == CHOLMOD_NOT_POSDEF) return false;
+  m.check("rowadd");
+  return true;
+}
+
+void check_positive_definite(const SparseMatrix& S, const std::string& what) {
+  SparseCholesky chol;
+  chol.analyze(S);
+  const int minor = chol.factorize(S);
+  if (minor >= 0)
+    throw NumericalError(what + " is not positive definite (CHOLMOD: the factorization breaks down at column " +
+                         std::to_string(minor) + ")");
+}
+
+}  // namespace cdyn

@@ -1,0 +1,53 @@
+// sparse_cholesky.hpp — a sparse Cholesky factorization P S Pᵀ = L Lᵀ of a symmetric
+// positive definite matrix through CHOLMOD's C API, kept across time steps.
+//
+// The Eigen matrix is read in place (no copy; lower triangle used).  analyze() once per
+// pattern (fill-reducing ordering, pattern of L), factorize() per new values (supernodal
+// when CHOLMOD finds it worth it), and between factorizations replace_by_identity() /
+// restore() change one row and column of the factorized matrix (cholmod_rowdel /
+// cholmod_rowadd: a rank-2 modification of L, Davis & Hager 2005) without refactorizing:
+// what an active-set method needs when a few constraints switch.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cdyn/base/sparse.hpp"
+
+namespace cdyn {
+
+class SparseCholesky {
+ public:
+  SparseCholesky();
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+  void analyze(const SparseMatrix& S);
+  bool analyzed_for(const SparseMatrix& S) const;  // same pattern as the last analyze()
+  // Numeric factorization of S (pattern as analysed).  Returns −1, or the unknown at
+  // which S was found not positive definite (the factor is then dropped).
+  int factorize(const SparseMatrix& S);
+  bool factorized() const;
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  // Row and column i of the factorized matrix become those of the identity.
+  void replace_by_identity(int i);
+  // Row and column i, identity before, become column i of S restricted to the rows with
+  // keep[row] != 0 (keep[i] != 0).  Returns false if the result is not positive definite.
+  bool restore(int i, const SparseMatrix& S, const std::vector<char>& keep);
+  // Floating-point operations of the last replace_by_identity() or restore(), as CHOLMOD
+  // counts them (cholmod_common::modfl): what an active-set method weighs against a CG solve.
+  double modification_flops() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Checks that S is positive definite (one CHOLMOD factorization); throws NumericalError
+// naming `what` and the failing leading minor.
+void check_positive_definite(const SparseMatrix& S, const std::string& what = "S");
+
+}  // namespace cdyn

@@ -1,0 +1,138 @@
+// mesh.cpp — simplicial meshes: measures, boundary bookkeeping, structured meshes.
+#include "cdyn/mesh/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <map>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+int Mesh::part_index(const std::string& name) const {
+  for (std::size_t p = 0; p < part_names.size(); ++p)
+    if (part_names[p] == name) return static_cast<int>(p);
+  std::string known;
+  for (const auto& n : part_names) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("boundary part '" + name + "' does not exist (mesh has: " +
+                   (known.empty() ? "none" : known) + ")");
+}
+
+std::vector<int> Mesh::part_vertices(const std::vector<int>& parts) const {
+  std::vector<int> v;
+  for (const auto& f : boundary) {
+    if (std::find(parts.begin(), parts.end(), f.part) == parts.end()) continue;
+    for (int k = 0; k < dim; ++k) v.push_back(f.vertices[k]);
+  }
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+double Mesh::cell_measure(int c) const {
+  const auto& t = cells[c];
+  const Point& a = vertices[t[0]];
+  const Point& b = vertices[t[1]];
+  if (dim == 1) return b.x - a.x;
+  const Point& p = vertices[t[2]];
+  return 0.5 * ((b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y));
+}
+
+double Mesh::measure() const {
+  double s = 0.0;
+  for (int c = 0; c < n_cells(); ++c) s += cell_measure(c);
+  return s;
+}
+
+double Mesh::h_max() const {
+  double h = 0.0;
+  for (const auto& t : cells)
+    for (int i = 0; i <= dim; ++i)
+      for (int j = i + 1; j <= dim; ++j) {
+        const Point& a = vertices[t[i]];
+        const Point& b = vertices[t[j]];
+        h = std::max(h, std::hypot(b.x - a.x, b.y - a.y));
+      }
+  return h;
+}
+
+void Mesh::complete_boundary() {
+  // A facet is a sorted vertex pair (2D) or a single vertex (1D, second entry -1).
+  using Key = std::array<int, 2>;
+  std::map<Key, int> count;
+  auto key = [this](const std::array<int, 2>& v) {
+    if (dim == 1) return Key{v[0], -1};
+    return Key{std::min(v[0], v[1]), std::max(v[0], v[1])};
+  };
+  for (const auto& t : cells) {
+    if (dim == 1) {
+      ++count[Key{t[0], -1}];
+      ++count[Key{t[1], -1}];
+    } else {
+      for (int e = 0; e < 3; ++e) ++count[key({t[e], t[(e + 1) % 3]})];
+    }
+  }
+  std::map<Key, bool> known;
+  for (const auto& f : boundary) known[key(f.vertices)] = true;
+  for (const auto& [k, n] : count)
+    if (n == 1 && !known.count(k)) boundary.push_back({k, -1});
+}
+
+void Mesh::check(const std::string& source) const {
+  if (dim != 1 && dim != 2) throw InputError(source + ": mesh dimension must be 1 or 2");
+  if (cells.empty()) throw InputError(source + ": the mesh has no cells");
+  for (int c = 0; c < n_cells(); ++c) {
+    for (int i = 0; i <= dim; ++i)
+      if (cells[c][i] < 0 || cells[c][i] >= n_vertices())
+        throw InputError(source + ": cell " + std::to_string(c) + " refers to a missing vertex");
+    if (!(cell_measure(c) > 0.0))
+      throw InputError(source + ": cell " + std::to_string(c) +
+                       " is degenerate or inverted (measure " + std::to_string(cell_measure(c)) + ")");
+  }
+}
+
+Mesh interval_mesh(int n, double length) {
+  if (n < 1) throw InputError("mesh.n: the interval needs at least one cell");
+  // (isfinite: an infinite length would give the vertices inf·0 = NaN)
+  if (!(length > 0.0) || !std::isfinite(length)) throw InputError("mesh.length: must be positive and finite");
+  // vertex indices are ints
+  if (n >= std::numeric_limits<int>::max()) throw InputError("mesh.n: too many cells (" + std::to_string(n) + ")");
+  Mesh m;
+  m.dim = 1;
+  for (int i = 0; i <= n; ++i) m.vertices.push_back({length * i / n, 0.0});
+  for (int i = 0; i < n; ++i) m.cells.push_back({i, i + 1, -1});
+  m.part_names = {"left", "right"};
+  m.boundary = {{{0, -1}, 0}, {{n, -1}, 1}};
+  return m;
+}
+
+Mesh unit_square_mesh(int n, double lx, double ly) {
+  if (n < 1) throw InputError("mesh.n: the square needs at least one cell per side");
+  // (n + 1)² vertices and 2n² cells are indexed by int: refuse n where that overflows
+  if (n > 46339) throw InputError("mesh.n: too many cells per side (" + std::to_string(n) + "; at most 46339)");
+  if (!(lx > 0.0 && ly > 0.0) || !std::isfinite(lx) || !std::isfinite(ly))
+    throw InputError("unit_square_mesh: the side lengths must be positive and finite");
+  Mesh m;
+  m.dim = 2;
+  auto v = [n](int i, int j) { return i + j * (n + 1); };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.vertices.push_back({lx * i / n, ly * j / n});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      // Split along the diagonal (i,j)-(i+1,j+1): lower-right then upper-left triangle.
+      m.cells.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      m.cells.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  m.part_names = {"bottom", "right", "top", "left"};
+  for (int i = 0; i < n; ++i) {
+    m.boundary.push_back({{v(i, 0), v(i + 1, 0)}, 0});
+    m.boundary.push_back({{v(n, i), v(n, i + 1)}, 1});
+    m.boundary.push_back({{v(i + 1, n), v(i, n)}, 2});
+    m.boundary.push_back({{v(0, i + 1), v(0, i)}, 3});
+  }
+  return m;
+}
+
+}  // namespace cdyn

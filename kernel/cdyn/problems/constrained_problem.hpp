@@ -1,0 +1,87 @@
+// constrained_problem.hpp — the semi-discrete constrained problem (seed eq. 16) on
+// the free dofs of W^h, ready for a time scheme:
+//
+//     M Ü + A U = L(t) + Gᵀλ,   G U ≤ α,  λ ≤ 0,  λᵀ(G U − α) = 0,
+//
+// with every constraint a bound on one unknown (lower ≤ U ≤ upper; G = −I on the
+// obstacle dofs, so the seed's λ is minus the QP reaction).  The problem also keeps
+// what is needed for the energy of the FULL field (Dirichlet dofs included):
+//     J = ½ Vᵀ C V + ½ Uᵀ A U − Lᵀ U    (seed, Theorem 2).
+//
+// Optional change of basis (elasticity against an inclined plane, elastic_contact.hpp).
+// A bound acts on ONE unknown, but the Signorini condition n·u(a) ≥ g(a) acts on a
+// combination of u_x and u_y.  The problem may therefore carry an orthogonal,
+// block-diagonal R on the free dofs (qp_rotation.hpp: 2 × 2 blocks [n t] at the contact
+// nodes, identity elsewhere) and then its unknowns are the rotated components
+//     U' = Rᵀ U_f    (normal n·u and tangential t·u at the contact nodes),
+// with A = Rᵀ A_ff R, load = Rᵀ (L − A U_D)_f, the mass model seeing R
+// (mass_rotated.hpp), and lower/upper/constrained naming rotated unknowns.  R is
+// orthogonal, so J and every scheme's algebra are unchanged: the schemes use only A,
+// load(t), mass, the bounds, full() and potential_energy(), and never know about R.
+// Without R (the scalar problems, axis-aligned planes) U' = U_f and nothing changes.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/mass/mass_model.hpp"
+
+namespace cdyn {
+
+struct ConstrainedProblem {
+  std::unique_ptr<FESpace> W;           // displacement space W^h
+  std::unique_ptr<DirichletLift> bc;    // free/fixed dofs of W^h
+  SparseMatrix A_full;                  // stiffness on all dofs of W^h
+  std::function<Eigen::VectorXd(double)> L_full;  // load vector on all dofs at time t
+  bool load_is_constant = true;         // L does not depend on t (then it is cached)
+  Eigen::VectorXd UD;                   // Dirichlet lifting (constant in time)
+
+  // Change of basis on the free dofs, U_f = R U' (absent: the identity).
+  std::optional<SparseMatrix> R;
+
+  SparseMatrix A;                       // A_ff (Rᵀ A_ff R with a rotation)
+  std::unique_ptr<MassModel> mass;      // M = Bᵀ C⁻¹ B on the free dofs (Rᵀ M R)
+  Eigen::VectorXd lower, upper;         // the constraint set K̄^h as bounds (±inf: none)
+  std::vector<int> constrained;         // free dofs carrying a finite bound
+
+  int n_free() const { return static_cast<int>(A.rows()); }
+
+  // (L(t) − A U_D)_f: the load seen by the free dofs (Rᵀ (L(t) − A U_D)_f).  A
+  // reference to the cache: valid until load() or full_load() is called with another t.
+  const Eigen::VectorXd& load(double t) const;
+
+  // The full coefficient vector P R U' + U_D (R U' = U' without a rotation).
+  Eigen::VectorXd full(const Eigen::VectorXd& Uf) const;
+
+  // Unknowns ↔ Cartesian components of the free dofs: global(X') = R X',
+  // local(X) = Rᵀ X (both the identity without a rotation).  local() of a Cartesian
+  // free vector gives its normal (and tangential) components at the contact nodes, so
+  // it is also how a reaction or a displacement is reported in the contact frame;
+  // global() brings the unknowns, or a reaction Gᵀλ of a step, back to (x, y).
+  Eigen::VectorXd global(const Eigen::VectorXd& X) const;
+  Eigen::VectorXd local(const Eigen::VectorXd& X) const;
+
+  // The unknowns of a full coefficient vector (e.g. an interpolated initial
+  // displacement or velocity): Rᵀ (U)_f.  Use it instead of bc->restrict() so that a
+  // rotated problem gets rotated initial data.
+  Eigen::VectorXd unknowns(const Eigen::VectorXd& U_full) const { return local(bc->restrict(U_full)); }
+
+  // L(t) on all dofs (assembled once when the load is constant, else once per t).
+  const Eigen::VectorXd& full_load(double t) const;
+
+  // ½ UᵀAU − LᵀU of the full field at time t.
+  double potential_energy(const Eigen::VectorXd& Uf, double t) const;
+
+  // Largest violation max(lower − U, U − upper, 0) over the constrained dofs.
+  double max_violation(const Eigen::VectorXd& Uf) const;
+
+ private:
+  mutable double cached_t_ = 0.0;
+  mutable Eigen::VectorXd cached_full_load_, cached_load_;
+};
+
+}  // namespace cdyn

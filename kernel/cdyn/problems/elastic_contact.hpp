@@ -1,0 +1,80 @@
+// elastic_contact.hpp — the elastodynamic Signorini problem of the seed (eqs. 1–6) in
+// plane strain, as a ConstrainedProblem (constrained_problem.hpp):
+//
+//     ρ ü − div σ(u) = f  in Ω,     σ(u) = λ tr ε(u) I + 2μ ε(u)       (1), (2)
+//     σ(u) ν = g_N on Γ_N,   u = u_D on Γ_D,   u(0) = u₀, u̇(0) = u₁     (3)–(5)
+//     nodal Signorini contact on Γ_C against a rigid plane             (6)
+//
+// Weak form: A_ij = ∫ λ div φ_i div φ_j + 2μ ε(φ_i):ε(φ_j) (assemble_elasticity),
+// L_i = ∫_Ω f·φ_i + ∫_{Γ_N} g_N·φ_i (assemble_load, assemble_boundary_load); the inertia
+// is the chosen pair's M = ρ Bᵀ C⁻¹ B or a classical mass model (mass_model.hpp).
+//
+// The rigid plane (convention, docs/elasticity.md).  The plane passes through the point
+// p and n is its unit normal pointing from the obstacle INTO the body's side (the
+// obstacle's outward normal).  A contact vertex a may not cross it:
+//     (a + u(a) − p)·n ≥ 0   ⇔   n·u(a) ≥ g(a) := −(a − p)·n,
+// a LOWER bound on the normal component, the membrane's u ≥ g with e_y replaced by n.
+// g(a) ≤ 0 is minus the initial distance to the plane.  With the body's outward normal
+// ν = −n on Γ_C this is the seed's u_N = u·ν ≤ −g (eq. 6), and its multiplier λ_N ≤ 0
+// is minus the QP reaction on the normal unknown: the contact pressure −λ_N ≥ 0.
+//
+// The constraint acts on the two vertex dofs of each vertex of Γ_C (never on bubbles
+// or edge dofs).  For a normal along an axis the bound falls on u_x or u_y itself;
+// otherwise the problem carries the node-local rotation R (qp_rotation.hpp) and its
+// unknowns at the contact nodes are (n·u, t·u), t = (−n_y, n_x).  A vertex whose two
+// components are fixed by Dirichlet conditions is not constrained; one with a single
+// fixed component (a roller) gets the bound on its free component when n has a part
+// along it.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/mesh/mesh.hpp"
+
+namespace cdyn {
+
+// The zero field, the default of every datum below.
+inline double zero_field(double, double, double) { return 0.0; }
+
+struct ElasticContactData {
+  Element displacement = Element::P1Bubble;   // W^h, two components
+  std::string velocity = "P0";     // H^h element ("P0", "P1") or a classical model
+                                   // ("consistent", "lumped", "redistributed")
+  double rho = 1.0;                // density
+  double lambda = 1.0, mu = 1.0;   // Lamé parameters (plane strain; lame_parameters(E, ν))
+  std::array<Field, 2> f{zero_field, zero_field};   // body force (f_x, f_y)(x, y, t)
+  bool load_is_constant = true;    // neither f nor the traction depends on t
+
+  std::vector<int> dirichlet_parts;                // Γ_D (indices into mesh.part_names)
+  std::vector<int> dirichlet_components;           // the fixed components; empty: both
+  std::array<Field, 2> dirichlet_value{zero_field, zero_field};  // u_D, constant in time
+
+  std::vector<int> neumann_parts;                  // Γ_N (free parts with a traction)
+  std::array<Field, 2> traction{zero_field, zero_field};  // g_N = σ ν on Γ_N
+
+  std::vector<int> contact_parts;  // Γ_C
+  Point obstacle_point{0.0, 0.0};  // p, a point of the rigid plane
+  Point obstacle_normal{0.0, 1.0}; // n, towards the body (normalized by the builder)
+  bool obstacle = true;            // false: the same problem (same M, same unknowns) with no constraint
+  bool rotate_always = false;      // rotate even for an axis-aligned n (to test both paths)
+};
+
+// Lamé parameters of Young's modulus E and Poisson's ratio ν (plane strain uses the 3D
+// ones): λ = Eν / ((1 + ν)(1 − 2ν)),  μ = E / (2(1 + ν)).  InputError unless E > 0 and
+// −1 < ν < ½.
+struct Lame {
+  double lambda = 0.0, mu = 0.0;
+};
+Lame lame_parameters(double E, double nu);
+
+// g(a) = −(a − p)·n: the lower bound of n·u(a) (n normalized).
+double obstacle_gap(const ElasticContactData& data, const Point& a);
+
+// Throws InputError for ρ ≤ 0, μ ≤ 0, λ + μ ≤ 0 (plane-strain ellipticity), a zero
+// normal, a non-2D mesh, or an obstacle with no contact part.
+ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& data);
+
+}  // namespace cdyn

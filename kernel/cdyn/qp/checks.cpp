@@ -1,0 +1,114 @@
+// checks.cpp — input checks of a step QP, and their cache across time steps.
+#include "cdyn/qp/checks.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "cdyn/base/error.hpp"
+#include "cdyn/base/format.hpp"
+#include "cdyn/linalg/sparse_cholesky.hpp"
+
+namespace cdyn {
+
+namespace {
+
+void check_finite(const SparseMatrix& M, const std::string& what) {
+  for (int j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
+      if (!std::isfinite(it.value()))
+        throw InputError("BoundQP: " + what + "(" + std::to_string(it.row()) + "," +
+                         std::to_string(j) + ") = " + to_text(it.value()) + " is not finite");
+}
+
+void check_symmetric(const SparseMatrix& M, const std::string& what) {
+  const SparseMatrix T = M.transpose();
+  double max_entry = 0.0;
+  for (int j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) max_entry = std::max(max_entry, std::abs(it.value()));
+  const SparseMatrix diff = M - T;
+  for (int j = 0; j < diff.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(diff, j); it; ++it)
+      if (std::abs(it.value()) > 1e-10 * max_entry)
+        throw InputError("BoundQP: " + what + " is not symmetric: entry (" + std::to_string(it.row()) + "," +
+                         std::to_string(j) + ") differs from its transpose by " + to_text(it.value()));
+}
+
+}  // namespace
+
+void check_problem(const BoundQP& qp, bool matrices) {
+  const int n = qp.size();
+  if (qp.lower.size() != n || qp.upper.size() != n)
+    throw InputError("BoundQP: r has " + std::to_string(n) + " entries but lower has " +
+                     std::to_string(qp.lower.size()) + " and upper " + std::to_string(qp.upper.size()));
+  const bool explicit_S = qp.S.rows() != 0 || qp.S.cols() != 0;
+  if (explicit_S && qp.saddle)
+    throw InputError("BoundQP: give either S or its saddle form, not both");
+  if (!explicit_S && !qp.saddle && n > 0) throw InputError("BoundQP: neither S nor a saddle form is given");
+  if (explicit_S) {
+    if (qp.S.rows() != n || qp.S.cols() != n)
+      throw InputError("BoundQP: S is " + std::to_string(qp.S.rows()) + "x" + std::to_string(qp.S.cols()) +
+                       " but r has " + std::to_string(n) + " entries");
+    if (matrices) {
+      check_finite(qp.S, "S");
+      check_symmetric(qp.S, "S");
+    }
+  } else if (qp.saddle) {
+    const SaddleForm& f = *qp.saddle;
+    const long m = f.C.rows();
+    if (f.A.rows() != n || f.A.cols() != n)
+      throw InputError("BoundQP: saddle block A is " + std::to_string(f.A.rows()) + "x" +
+                       std::to_string(f.A.cols()) + " but r has " + std::to_string(n) + " entries");
+    if (f.C.cols() != m || m == 0) throw InputError("BoundQP: saddle block C must be square and non-empty");
+    if (f.B.rows() != m || f.B.cols() != n)
+      throw InputError("BoundQP: saddle block B is " + std::to_string(f.B.rows()) + "x" +
+                       std::to_string(f.B.cols()) + ", expected " + std::to_string(m) + "x" + std::to_string(n));
+    if (!(std::isfinite(f.c) && f.c > 0)) throw InputError("BoundQP: saddle factor c = " + to_text(f.c) + " must be > 0");
+    if (matrices) {
+      check_finite(f.A, "A");
+      check_finite(f.B, "B");
+      check_finite(f.C, "C");
+      check_symmetric(f.A, "A");
+      check_symmetric(f.C, "C");
+    }
+  }
+  // (called every step: the index text is made only for a message, not per unknown)
+  auto at = [](int i) { return "[" + std::to_string(i) + "]"; };
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(qp.r[i])) throw InputError("BoundQP: r" + at(i) + " = " + to_text(qp.r[i]) + " is not finite");
+    if (std::isnan(qp.lower[i]) || std::isnan(qp.upper[i])) throw InputError("BoundQP: bound" + at(i) + " is NaN");
+    if (qp.lower[i] == std::numeric_limits<double>::infinity() ||
+        qp.upper[i] == -std::numeric_limits<double>::infinity())
+      throw InputError("BoundQP: bounds" + at(i) + " exclude every finite value: the constraint set is empty");
+    if (qp.lower[i] > qp.upper[i])
+      throw InputError("BoundQP: lower" + at(i) + " = " + to_text(qp.lower[i]) + " > upper" + at(i) + " = " +
+                       to_text(qp.upper[i]) + ": the constraint set is empty");
+  }
+}
+
+bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std::string& solver) {
+  bool same = valid_;
+  if (same && qp.saddle)
+    same = S_.size() == 0 && qp.saddle->c == c_ && same_matrix(qp.saddle->A, A_) && same_matrix(qp.saddle->B, B_) &&
+           same_matrix(qp.saddle->C, C_);
+  else if (same)
+    same = A_.size() == 0 && same_matrix(qp.S, S_);
+  check_problem(qp, !same);
+  if (same) return false;
+  valid_ = false;
+  if (qp.saddle) {
+    A_ = qp.saddle->A;
+    B_ = qp.saddle->B;
+    C_ = qp.saddle->C;
+    c_ = qp.saddle->c;
+    S_ = SparseMatrix();
+  } else {
+    if (positive_definite && qp.size() > 0) check_positive_definite(qp.S, solver + ": S");
+    S_ = qp.S;
+    A_ = B_ = C_ = SparseMatrix();
+  }
+  for (SparseMatrix* M : {&S_, &A_, &B_, &C_}) M->makeCompressed();
+  valid_ = true;
+  return true;
+}
+
+}  // namespace cdyn

@@ -1,0 +1,78 @@
+// kkt.cpp — the common KKT measure of the step QP, and how a solver finishes a result.
+#include "cdyn/qp/kkt.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cdyn/base/error.hpp"
+#include "cdyn/base/format.hpp"
+
+namespace cdyn {
+
+Eigen::VectorXd scaling_diagonal(const BoundQP& qp) {
+  if (!qp.saddle) return qp.S.diagonal();
+  const SaddleForm& f = *qp.saddle;
+  Eigen::VectorXd D = f.A.diagonal();
+  const Eigen::VectorXd Cd = f.C.diagonal();
+  for (int j = 0; j < f.B.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(f.B, j); it; ++it) D[j] += f.c * it.value() * it.value() / Cd[it.row()];
+  return D;
+}
+
+Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                                 const Eigen::VectorXd& D) {
+  const int n = qp.size();
+  Eigen::VectorXd F(n);
+  for (int i = 0; i < n; ++i) {
+    const double step = X[i] - reaction[i] / D[i];
+    F[i] = X[i] - std::clamp(step, qp.lower[i], qp.upper[i]);
+  }
+  return F;
+}
+
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                    const Eigen::VectorXd* D_known) {
+  if (qp.size() == 0) return 0.0;
+  const Eigen::VectorXd D = D_known ? *D_known : scaling_diagonal(qp);
+  const double F = natural_residual(qp, X, reaction, D).lpNorm<Eigen::Infinity>();
+  const double scale = std::max(X.lpNorm<Eigen::Infinity>(), qp.r.cwiseQuotient(D).lpNorm<Eigen::Infinity>());
+  if (!std::isfinite(F)) return std::numeric_limits<double>::infinity();
+  return scale > 0 ? F / scale : F;
+}
+
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X) {
+  QuadraticForm form;
+  form.set(qp);
+  return kkt_residual(qp, X, form.apply(X) - qp.r);
+}
+
+std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                            const Eigen::VectorXd& D) {
+  std::vector<int> active;
+  for (int i = 0; i < qp.size(); ++i) {
+    const double l = qp.lower[i], u = qp.upper[i];
+    if (l == u || (std::isfinite(l) && reaction[i] > D[i] * (X[i] - l)) ||
+        (std::isfinite(u) && reaction[i] < D[i] * (X[i] - u)))
+      active.push_back(i);
+  }
+  return active;
+}
+
+void finish_result(const BoundQP& qp, const QuadraticForm& form, double tol, QPResult& result) {
+  result.reaction = form.apply(result.X) - qp.r;
+  const Eigen::VectorXd& D = form.diagonal();
+  result.kkt_residual = kkt_residual(qp, result.X, result.reaction, &D);
+  result.active = active_set(qp, result.X, result.reaction, D);
+  result.converged = result.kkt_residual <= tol;
+}
+
+void report_failure(const std::string& solver, const QPOptions& options, const QPResult& result,
+                    const std::string& detail) {
+  if (result.converged || !options.throw_on_failure) return;
+  throw NumericalError(solver + ": did not converge: KKT residual " + to_text(result.kkt_residual) + " > tol " +
+                       to_text(options.tol) + " after " + std::to_string(result.iterations) + " iterations" +
+                       (detail.empty() ? "" : " (" + detail + ")"));
+}
+
+}  // namespace cdyn

@@ -1,0 +1,47 @@
+// kkt.hpp — the one measure of how far X is from solving the step QP (qp/bound_qp.hpp),
+// used by every solver (docs/qp.md):
+//
+//     F(X) = X − P(X − D⁻¹ λ),   λ = S X − r,   P the projection on the box,  D = diag(S),
+//     kkt_residual(X) = ‖F(X)‖_∞ / max(‖X‖_∞, ‖D⁻¹ r‖_∞).
+//
+// F = 0 exactly at the solution; F measures infeasibility, stationarity and
+// complementarity at once in units of X, and the quotient is invariant under scaling
+// S, r or the bounds, so one `tol` means the same thing for every solver.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cdyn/qp/bound_qp.hpp"
+#include "cdyn/qp/quadratic_form.hpp"
+
+namespace cdyn {
+
+// D = diag(S); in saddle form diag(A) + c Σ_k B_kj² / C_kk (C replaced by its diagonal:
+// a scaling, not the exact diagonal, which would need C⁻¹).
+Eigen::VectorXd scaling_diagonal(const BoundQP& qp);
+
+// F(X) = X − P(X − D⁻¹ λ), the natural residual of the KKT conditions.
+Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X,
+                                 const Eigen::VectorXd& reaction, const Eigen::VectorXd& D);
+
+// The common measure.  For the saddle form the first overload factorizes C each call;
+// solvers use the second, with the gradient λ = S X − r they already have.
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X);
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                    const Eigen::VectorXd* D = nullptr);  // D = scaling_diagonal(qp) if already known
+
+// The unknowns at a bound according to the rule of QPResult::active.
+std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X,
+                            const Eigen::VectorXd& reaction, const Eigen::VectorXd& D);
+
+// Fills reaction, active, kkt_residual, converged of a result whose X is set, with the
+// common measure.  `form` is the problem's QuadraticForm.
+void finish_result(const BoundQP& qp, const QuadraticForm& form, double tol, QPResult& result);
+
+// Throws NumericalError naming the solver, the residual and the iteration count when
+// result.converged is false and options.throw_on_failure is set.
+void report_failure(const std::string& solver, const QPOptions& options, const QPResult& result,
+                    const std::string& detail = "");
+
+}  // namespace cdyn

@@ -1,0 +1,36 @@
+// step_solver.hpp — what a step QP solver is, and choosing one by name.
+//
+// The solvers (one file each under qp/): pdas (primal-dual active set,
+// Hintermüller–Ito–Kunisch 2002, the default; qp/pdas/), pgs (projected Gauss–Seidel /
+// SOR), ipopt (interior point, optional at build time: CDYN_WITH_IPOPT), nlopt (L-BFGS
+// with bounds, small problems; CDYN_WITH_NLOPT).  A solver sees only S (or its saddle
+// form), r and the bounds (qp/bound_qp.hpp): never a scheme or a mesh.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cdyn/qp/bound_qp.hpp"
+
+namespace cdyn {
+
+// One object lives across all time steps; it may cache analyses and factorizations
+// of S (keyed by S's pattern and values, so a changed S is always noticed).
+class StepSolver {
+ public:
+  virtual ~StepSolver() = default;
+  virtual std::string name() const = 0;
+  // Throws InputError for inconsistent data (sizes, lower > upper, NaN/Inf, a form the
+  // solver does not take) and NumericalError when S is not positive definite or the
+  // solver does not reach tol.  `warm_start`: a previous result (its X and active set).
+  virtual QPResult solve(const BoundQP& qp, const QPResult* warm_start = nullptr) = 0;
+};
+
+// name: one of step_solver_names(); anything else is an InputError.
+std::unique_ptr<StepSolver> make_step_solver(const std::string& name, const QPOptions& options = {});
+
+// The solvers this build has: "pdas", "pgs", and "ipopt", "nlopt" when built with them.
+std::vector<std::string> step_solver_names();
+
+}  // namespace cdyn

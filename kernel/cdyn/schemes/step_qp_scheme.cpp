@@ -1,0 +1,88 @@
+// implicit_step.cpp — the step QP S = aA + kM, built once and solved with warm starts.
+#include "cdyn/schemes/step_qp_scheme.hpp"
+
+#include <cmath>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m,
+                           bool condense)
+    : p_(p), solver_(solver), dt_(dt), M_(p.mass->matrix()) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("time.dt: must be positive (got " + std::to_string(dt) + ")");
+  const double k = m / (dt * dt);
+  qp_.lower = p.lower;
+  qp_.upper = p.upper;
+  if (!M_) {
+    SaddleForm f = p.mass->saddle(SparseMatrix(a * p.A), k);
+    if (!same_matrix(f.B, f.C)) {
+      qp_.saddle = std::move(f);
+      return;
+    }
+    // H^h = W^h (P1/P1): B = C, so M = Bᵀ C⁻¹ B = C, the consistent mass — sparse after
+    // all; an explicit S (one Cholesky factor) instead of the saddle form (an LU of a
+    // matrix twice the size per active set).
+    M_ = f.C;
+  }
+  qp_.S = a * p.A + k * *M_;
+  qp_.S.makeCompressed();
+  if (!condense) return;
+  DiagonalCondensation c(qp_.S, p.lower, p.upper);
+  if (c.n_condensed() == 0) return;
+  qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
+  qp_.lower = c.kept(p.lower);
+  qp_.upper = c.kept(p.upper);
+  condensation_.emplace(std::move(c));
+}
+
+Energy StepQPScheme::energy(const State& s) const {
+  return {p_.mass->kinetic_energy(s.V), p_.potential_energy(s.U, s.t)};
+}
+
+Eigen::VectorXd StepQPScheme::mass_times(const Eigen::VectorXd& x) const {
+  return p_.mass->momentum(p_.mass->velocity(x));
+}
+
+Eigen::VectorXd StepQPScheme::inertia(double a, const Eigen::VectorXd& U, double b, const Eigen::VectorXd& V) const {
+  return p_.mass->momentum(a * p_.mass->velocity(U) + b * V);
+}
+
+void StepQPScheme::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+  if (condensation_) {
+    bool bounded = false;
+    for (int i = 0; i < condensation_->n() && !bounded; ++i)
+      bounded = condensation_->condenses(i) && (std::isfinite(lower[i]) || std::isfinite(upper[i]));
+    if (!bounded) {
+      qp_.lower = condensation_->kept(lower);
+      qp_.upper = condensation_->kept(upper);
+      return;
+    }
+    // a condensed unknown is bounded now: back to the full QP (the warm start's indices
+    // were those of the condensed one)
+    qp_.S = condensation_->S();
+    condensation_.reset();
+    has_last_ = false;
+  }
+  qp_.lower = lower;
+  qp_.upper = upper;
+}
+
+Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStats& stats) {
+  qp_.r = condensation_ ? condensation_->reduce(r) : r;  // r_c = r_v − S_vb S_bb⁻¹ r_b
+  last_ = solver_.solve(qp_, has_last_ ? &last_ : nullptr);
+  has_last_ = true;
+  stats.qp_iterations = last_.iterations;
+  stats.qp_seconds = last_.seconds;
+  stats.active = static_cast<int>(last_.active.size());
+  stats.kkt_residual = last_.kkt_residual;
+  stats.converged = last_.converged;
+  if (!condensation_) {
+    s.reaction = last_.reaction;
+    return last_.X;
+  }
+  s.reaction = condensation_->expand_reaction(last_.reaction);  // λ_b = 0
+  return condensation_->expand(last_.X, r);                     // X_b = S_bb⁻¹ (r_b − S_bv X_v)
+}
+
+}  // namespace cdyn

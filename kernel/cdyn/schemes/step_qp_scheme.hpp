@@ -1,0 +1,82 @@
+// implicit_step.hpp — what the one-step implicit schemes share.
+//
+// Backward Euler and the two midpoint variants all solve, per step, a QP with
+//     S = a A + k M,   k = m / dt²,
+// (a, m) = (1, 1), (1, 4) and (½, 2) respectively, and differ only in r and in the
+// update.  This base class builds S once (explicitly when M is sparse — H^h = P0, the
+// classical models, and H^h = W^h where B = C gives M = C — in saddle form otherwise), keeps the step solver's warm start, and provides M·x for the right-hand
+// sides.
+//
+// Static condensation (condensation.hpp).  With an explicit S, the unbounded unknowns
+// whose block of S is diagonal and whose elimination makes no fill — the bubbles of
+// P1+/P0 — are eliminated once, when S is built: the solver sees the QP on the kept
+// unknowns, S_c = S_vv − S_vb S_bb⁻¹ S_bv, r_c = r_v − S_vb S_bb⁻¹ r_b, and each step ends
+// with the back-substitution X_b = S_bb⁻¹ (r_b − S_bv X_v).  The same QP, a third of the
+// unknowns for P1+/P0; the stats (iterations, KKT residual) are those of the condensed
+// QP.  SchemeParameters::condense = false solves the full QP instead.
+#pragma once
+
+#include "cdyn/qp/condensation.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
+
+namespace cdyn {
+
+class StepQPScheme : public TimeScheme {
+ public:
+  // J(Uⁿ, Vⁿ) = ½ Vᵀ C V + ½ UᵀAU − LᵀU of the full field.
+  Energy energy(const State& s) const override;
+
+ protected:
+  StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m, bool condense = true);
+
+  // M x = Bᵀ (C⁻¹ B x): the momentum of the velocity of x, by the same route as inertia()
+  // below (not the explicit M, which has more entries than B and Bᵀ together for P1+/P0).
+  Eigen::VectorXd mass_times(const Eigen::VectorXd& x) const;
+
+  // The inertia terms of a right-hand side, a M U + b Bᵀ V = Bᵀ (a C⁻¹B U + b V): the
+  // momentum of the velocity a C⁻¹B U + b V.  One product with B and one with Bᵀ (for
+  // P1+/P0 together 40 % fewer entries than M and Bᵀ: M couples each vertex with its
+  // 6 neighbours and 6 bubbles, B each triangle with 4 dofs); for the classical models
+  // (velocity = U, momentum = M V) one product with M instead of two.
+  Eigen::VectorXd inertia(double a, const Eigen::VectorXd& U, double b, const Eigen::VectorXd& V) const;
+
+  // Solves the step QP with right-hand side r; fills s.reaction and the stats.
+  Eigen::VectorXd solve(const Eigen::VectorXd& r, State& s, StepStats& stats);
+
+  // The bounds of the step QP (the problem's K̄^h unless a scheme moves them).  A finite
+  // bound on a condensed unknown ends the condensation for the rest of the run.
+  void set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
+
+  // The explicit M when the mass model has one (H^h = P0, classical models), or C when B = C.
+  const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
+
+  const ConstrainedProblem& p_;
+  StepSolver& solver_;
+  double dt_;
+
+ private:
+  std::optional<SparseMatrix> M_;
+  std::optional<DiagonalCondensation> condensation_;
+  BoundQP qp_;
+  QPResult last_;
+  bool has_last_ = false;
+};
+
+}  // namespace cdyn
+
+namespace cdyn {
+// The schemes built on StepQPScheme (one file each).
+// condense: see StepQPScheme (static condensation of the bubbles).
+std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                bool condense = true);
+std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                          bool condense = true);
+std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                              bool condense = true);
+std::unique_ptr<TimeScheme> make_newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta,
+                                         double gamma, bool condense = true);
+std::unique_ptr<TimeScheme> make_paoli_schatzman(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                 double restitution);
+std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                   bool condense = true);
+}  // namespace cdyn

@@ -1,0 +1,31 @@
+// time_scheme.cpp — choosing a scheme by name; the initial velocity.
+#include "cdyn/schemes/time_scheme.hpp"
+
+#include "cdyn/base/error.hpp"
+#include "cdyn/schemes/step_qp_scheme.hpp"
+
+namespace cdyn {
+
+std::vector<std::string> time_scheme_names() {
+  return {"backward_euler", "midpoint", "midpoint_end", "newmark", "paoli_schatzman", "energy_conserving"};
+}
+
+std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
+                                             StepSolver& solver, double dt, const SchemeParameters& parameters) {
+  const bool c = parameters.condense;
+  if (name == "backward_euler") return make_backward_euler(problem, solver, dt, c);
+  if (name == "midpoint") return make_midpoint(problem, solver, dt, c);
+  if (name == "midpoint_end") return make_midpoint_end(problem, solver, dt, c);
+  if (name == "newmark") return make_newmark(problem, solver, dt, parameters.beta, parameters.gamma, c);
+  if (name == "paoli_schatzman") return make_paoli_schatzman(problem, solver, dt, parameters.restitution);
+  if (name == "energy_conserving") return make_energy_conserving(problem, solver, dt, c);
+  std::string known;
+  for (const auto& n : time_scheme_names()) known += (known.empty() ? "" : ", ") + n;
+  throw InputError("time.scheme: unknown scheme '" + name + "' (available: " + known + ")");
+}
+
+Eigen::VectorXd initial_velocity(const ConstrainedProblem& problem, const Eigen::VectorXd& Udot0) {
+  return problem.mass->velocity(Udot0);
+}
+
+}  // namespace cdyn

@@ -1,0 +1,77 @@
+// time_scheme.hpp — time integration of the semi-discrete constrained problem.
+//
+// Every implicit scheme of DESIGN.md §1 advances (U, V) by one QP
+//     min ½ XᵀSX − rᵀX  over  lower ≤ X ≤ upper,
+// followed by an explicit update.  S is fixed for a run (dt is), so the QP object and
+// the step solver's factorizations are reused from step to step; the previous step's
+// result warm-starts the next.  Derivations: docs/schemes.md.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/qp/step_solver.hpp"
+
+namespace cdyn {
+
+// The discrete state: time, displacement (free dofs of W^h), velocity (H^h).
+struct State {
+  double t = 0.0;
+  Eigen::VectorXd U, V;
+  Eigen::VectorXd reaction;  // Gᵀλ of the last step on the free dofs (λ the seed's multiplier)
+};
+
+// What one step cost and found.
+struct StepStats {
+  int qp_iterations = 0;
+  double qp_seconds = 0.0;
+  int active = 0;             // constraints active at the step's QP solution
+  double kkt_residual = 0.0;
+  // False when the step QP stopped above its tolerance.  That only returns when the
+  // solver was built with QPOptions::throw_on_failure = false (a caller that wants to
+  // look at the failing step: benchmarks, solver studies); by default the failure
+  // throws NumericalError and a scheme never hands back an unconverged step.  A
+  // caller that opts out must check this flag (docs/stability.md, "Solver stress").
+  bool converged = true;
+};
+
+// The discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU (seed, Theorem 2), split in its parts.
+struct Energy {
+  double kinetic = 0.0, potential = 0.0;
+  double total() const { return kinetic + potential; }
+};
+
+class TimeScheme {
+ public:
+  virtual ~TimeScheme() = default;
+  virtual std::string name() const = 0;
+  // Advances s from t to t + dt.
+  virtual StepStats step(State& s) = 0;
+  // The energy of the state in the form the scheme's identity is written for
+  // (docs/schemes.md): J(Uⁿ, Vⁿ) for the one-step schemes; the three-level schemes
+  // evaluate the potential part between the last two displacements.
+  virtual Energy energy(const State& s) const = 0;
+};
+
+// The parameters of the schemes that have some (docs/schemes.md).
+struct SchemeParameters {
+  double beta = 0.25, gamma = 0.5;  // newmark (the trapezoidal rule by default)
+  double restitution = 0.0;         // paoli_schatzman's e ∈ [0, 1]
+  bool condense = true;             // the implicit schemes: eliminate the bubbles (implicit_step.hpp)
+};
+
+// name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
+// energy_conserving.  The problem and the solver must outlive the scheme.  Throws
+// InputError for an unknown name, dt <= 0, parameters out of range, or a mass model
+// the scheme does not accept (paoli_schatzman needs an invertible M in W^h).
+std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
+                                             StepSolver& solver, double dt, const SchemeParameters& parameters = {});
+std::vector<std::string> time_scheme_names();
+
+// The initial velocity V⁰ in H^h from a displacement rate U̇⁰ on the free dofs:
+// C V⁰ = B U̇⁰ (seed eq. 11's initial condition).
+Eigen::VectorXd initial_velocity(const ConstrainedProblem& problem, const Eigen::VectorXd& Udot0);
+
+}  // namespace cdyn

@@ -1,0 +1,91 @@
+// wellposedness.hpp — condition (12) of the seed: the constraints must act
+// independently on the inertia-free displacements F = Ker B,
+//
+//     β = inf_{Q ∈ R^{N_g}} sup_{W ∈ F} QᵀGW / (|Q||W|) = σ_min(G Z)  > 0,        (12)
+//
+// Z an orthonormal basis of Ker B (B with the free columns of W^h), G (N_g × N_W) the
+// constraint rows (G = −I on the constrained vertex dofs for the obstacle u(a_i) ≥ g;
+// the nodal normals N_iᵀ for Signorini contact).  β = 0 whenever dim Ker B < N_g.
+// For a classical mass model Ker B is Ker M (consistent: {0}; redistributed: the
+// contact dofs).  With (12), Theorem 1 gives a unique Lipschitz solution and Theorem 2
+// energy conservation.
+//
+// Method (dense, docs/semi_discretization.md): a column-pivoted Householder QR of
+// (D B)ᵀ, D = diag(1/max_j |B_ij|) (a row scaling, Ker unchanged), gives the rank r of
+// B and an orthogonal Q = [Q_r, Z]; Zᵀ Gᵀ is the last N_W − r rows of Qᵀ Gᵀ (the
+// reflections applied to the N_g columns of Gᵀ, Z never formed), and β its smallest
+// singular value.  Cost O(N_W N_H (N_H + N_g)), memory N_W × N_H doubles: problems
+// with more than kWellposednessDenseLimit free dofs are refused with an InputError.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cdyn/fe/assembly.hpp"
+#include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/mesh/mesh.hpp"
+
+namespace cdyn {
+
+// Largest N_W (or N_H) the dense check accepts.  Measured (Release, one core of this
+// machine): membrane n = 20, P1+/P0 (N_W = 1161) 0.6 s, P2/P1 (1521) 0.4 s; n = 25,
+// P1+/P0 (1826) 2.6 s; the QR costs ~N_W N_H², so 3000 is about 10–15 s.
+inline constexpr int kWellposednessDenseLimit = 3000;
+
+// β at or below this counts as 0.  When G Z is exactly rank deficient the computed β
+// is round-off: exactly 0 from BDCSVD's deflation, 3e-16 .. 4e-16 with JacobiSVD
+// (P1+/P1 with the full P1 velocity space, n = 10, 20); the pairs that satisfy (12)
+// measure β ≥ 0.09 on the seed's meshes (docs/semi_discretization.md).  1e-8 (≈ √ε)
+// sits 8 decades above the first and 7 below the second.
+inline constexpr double kBetaTolerance = 1e-8;
+
+// Relative threshold on the QR pivots |R_ii| / |R_00| of the row-scaled Bᵀ below which
+// B is rank deficient.  Measured on the membrane (n = 10, 20, every pair): the nonzero
+// pivots are ≥ 0.21, the zero ones (P2/P0, whose B has a one-dimensional defect on the
+// structured mesh) ≤ 7e-15; 1e-9 is far from both, and stays far for meshes graded by
+// several orders of magnitude since the rows are scaled to unit size.
+inline constexpr double kRankTolerance = 1e-9;
+
+struct WellPosedness {
+  std::string pair;      // "P1+/P0", "consistent", ...
+  int n_W = 0;           // free dofs of W^h
+  int n_H = 0;           // velocity dofs (free dofs of W^h for a classical model)
+  int dim_ker_B = 0;     // dim F = dim Ker B
+  int n_g = 0;           // constraints
+  double beta = 0.0;     // σ_min(G Z); +infinity when there is no constraint
+  bool satisfied = false;  // β > kBetaTolerance
+};
+
+// Condition (12) for the given B (rows H^h, columns the free dofs of W^h) and G
+// (N_g × N_W).  Throws InputError above the dense limit.
+WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, int dense_limit = kWellposednessDenseLimit);
+
+// G for constraints at vertices (one row each, fixed vertices skipped: a Dirichlet
+// vertex is not an unknown): scalar W^h: row −e_v (the obstacle u(a_v) ≥ g, seed eq. 16);
+// vector W^h: row n_x e_{v,x} + n_y e_{v,y} (the normal displacement u·n ≤ gap), which
+// needs `normal`.  Columns are the free dofs of `bc`.
+SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc, const std::vector<int>& vertices,
+                                      std::optional<Point> normal = std::nullopt);
+
+// One row of the `cdyn wellposed` table.
+struct WellPosednessSetup {
+  std::vector<int> dirichlet_parts;       // indices into mesh.part_names
+  std::vector<int> constrained_vertices;  // where the constraint acts (fixed ones skipped)
+  int components = 1;                     // 2: plane elasticity
+  std::optional<Point> normal;            // components = 2: the constraint direction
+  int dense_limit = kWellposednessDenseLimit;
+};
+
+// `spec` is a pair "P1+/P0" (W^h its first half) or a classical model "consistent",
+// "lumped", "redistributed" on W^h = `classical_W` (the redistributed model takes the
+// constrained vertices, all components, as its contact dofs).  Throws InputError when
+// the model cannot be built for this setup (e.g. redistributed with every free vertex
+// constrained) or the problem exceeds the dense limit.
+WellPosedness wellposedness_row(const Mesh& mesh, const std::string& spec, const WellPosednessSetup& setup,
+                                Element classical_W = Element::P1);
+
+// The pairs of the seed's experiments, in its order: P1/P1, P1/P0, P1+/P0, P1+/P1, P2/P1.
+std::vector<std::string> seed_pairs();
+
+}  // namespace cdyn

@@ -1,0 +1,9 @@
+// implicit_step.hpp — forwarding header: the flat include path of cdyn 0.1 before the kernel was
+// laid out by stage (docs/kernel_map.md).  Kept for one release; include the new path.
+#pragma once
+
+#include "cdyn/schemes/step_qp_scheme.hpp"
+
+namespace cdyn {
+using ImplicitStep = StepQPScheme;  // the former name
+}  // namespace cdyn
