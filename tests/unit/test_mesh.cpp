@@ -2,7 +2,7 @@
 // boundary parts, and FreeFEM's square(n,n) numbering.
 #include <gtest/gtest.h>
 
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/fe/fe_space.hpp"
 

@@ -15,6 +15,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/qp/step_solver.hpp"
 #include "cdyn/problems/nodal_rotation.hpp"
+#include "cdyn/qp/rotated_qp.hpp"
 
 namespace {
 
@@ -104,12 +105,13 @@ TEST(QPRotation, InclinedSignoriniMatchesTheConstrainedQP) {
     qp.r = r;
     qp.lower = VectorXd::Constant(2 * N, -inf);
     qp.upper = VectorXd::Constant(2 * N, inf);
-    cdyn::BoundQP local = cdyn::rotate(qp, rot);
+    const cdyn::SparseMatrix R = cdyn::rotation_matrix(rot, 2 * N);
+    cdyn::BoundQP local = cdyn::rotate(qp, R);
     for (const Plane& p : planes) local.upper[2 * p.node] = p.gap;  // normal component ≤ gap
 
     for (const std::string& name : cdyn::step_solver_names()) {
       auto solver = cdyn::make_step_solver(name, cdyn::QPOptions{});
-      const cdyn::QPResult res = cdyn::rotate_back(rot, solver->solve(local));
+      const cdyn::QPResult res = cdyn::rotate_back(R, solver->solve(local));
       EXPECT_LE((res.X - exact).lpNorm<Eigen::Infinity>(), 1e-8) << name << " seed " << seed;
       // the reaction in global components is −μ_k n_k at the constrained nodes, 0 elsewhere
       VectorXd expected = VectorXd::Zero(2 * N);
@@ -186,7 +188,8 @@ TEST(QPRotation, SaddleFormRotatesLikeTheExplicitS) {
     qp->lower = VectorXd::Constant(2 * N, -inf);
     qp->upper = VectorXd::Constant(2 * N, inf);
   }
-  cdyn::BoundQP ls = cdyn::rotate(as_saddle, rot), le = cdyn::rotate(as_explicit, rot);
+  const cdyn::SparseMatrix R = cdyn::rotation_matrix(rot, 2 * N);
+  cdyn::BoundQP ls = cdyn::rotate(as_saddle, R), le = cdyn::rotate(as_explicit, R);
   for (cdyn::BoundQP* qp : {&ls, &le}) {
     qp->upper[2] = 0.0;
     qp->upper[6] = 0.0;

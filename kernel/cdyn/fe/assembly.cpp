@@ -10,7 +10,7 @@
 #include <map>
 #include <vector>
 
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/fe/quadrature.hpp"
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <map>
 
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 #include "cdyn/base/error.hpp"
 
 namespace cdyn {

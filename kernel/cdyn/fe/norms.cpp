@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/fe/quadrature.hpp"
 

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "cdyn/fe/assembly.hpp"
+#include "cdyn/base/sparse.hpp"
 
 namespace cdyn {
 

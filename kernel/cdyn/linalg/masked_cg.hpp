@@ -28,7 +28,7 @@
 
 #include <vector>
 
-#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/base/sparse.hpp"
 #include "cdyn/linalg/symmetric_gauss_seidel.hpp"
 
 namespace cdyn {

@@ -29,7 +29,7 @@
 
 #include <vector>
 
-#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/base/sparse.hpp"
 
 namespace cdyn {
 

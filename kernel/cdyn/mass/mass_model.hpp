@@ -22,7 +22,7 @@
 
 #include "cdyn/fe/assembly.hpp"
 #include "cdyn/fe/dirichlet.hpp"
-#include "cdyn/qp/step_solver.hpp"
+#include "cdyn/base/sparse.hpp"
 
 namespace cdyn {
 

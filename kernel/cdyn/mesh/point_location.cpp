@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 
 namespace cdyn {
 

@@ -1,4 +1,4 @@
-// qp_rotation.cpp — node-local normal/tangential rotation of the step QP; see qp_rotation.hpp.
+// nodal_rotation.cpp — node-local normal/tangential rotation; see nodal_rotation.hpp.
 #include "cdyn/problems/nodal_rotation.hpp"
 
 #include <cmath>
@@ -61,39 +61,12 @@ SparseMatrix rotation_matrix(const NodalRotation& rotation, int n) {
   return R;
 }
 
-BoundQP rotate(const BoundQP& qp, const NodalRotation& rotation) {
-  const int n = qp.size();
-  const SparseMatrix R = rotation_matrix(rotation, n);
-  BoundQP out;
-  if (qp.saddle) {
-    SaddleForm f = *qp.saddle;
-    f.A = SparseMatrix(R.transpose() * qp.saddle->A * R);
-    f.B = SparseMatrix(qp.saddle->B * R);
-    f.A.makeCompressed();
-    f.B.makeCompressed();
-    out.saddle = std::move(f);
-  } else {
-    out.S = SparseMatrix(R.transpose() * qp.S * R);
-    out.S.makeCompressed();
-  }
-  out.r = R.transpose() * qp.r;
-  out.lower = qp.lower;
-  out.upper = qp.upper;
-  return out;
-}
-
 Eigen::VectorXd to_local(const NodalRotation& rotation, const Eigen::VectorXd& v) {
   return apply_blocks(rotation, v, true);
 }
 
 Eigen::VectorXd to_global(const NodalRotation& rotation, const Eigen::VectorXd& v) {
   return apply_blocks(rotation, v, false);
-}
-
-QPResult rotate_back(const NodalRotation& rotation, QPResult result) {
-  result.X = to_global(rotation, result.X);
-  result.reaction = to_global(rotation, result.reaction);
-  return result;
 }
 
 }  // namespace cdyn

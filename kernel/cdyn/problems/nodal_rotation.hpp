@@ -1,7 +1,8 @@
-// qp_rotation.hpp — node-local rotation of displacement pairs (u_x, u_y) to normal and
-// tangential components, so that a nodal Signorini condition on an inclined plane,
+// nodal_rotation.hpp — node-local rotation of displacement pairs (u_x, u_y) to normal
+// and tangential components, so that a nodal Signorini condition on an inclined plane,
 //     n · u(a) ≤ gap(a),
-// becomes a bound on one unknown of the step QP (qp.hpp).
+// becomes a bound on one unknown of the step QP (qp/bound_qp.hpp; the QP itself is
+// rotated by qp/rotated_qp.hpp).
 //
 // For each constrained node with unit normal n = (n_x, n_y) and tangent t = (−n_y, n_x),
 // the unknowns (X_ix, X_iy) are replaced by X'_ix = n·u (normal) and X'_iy = t·u
@@ -15,7 +16,9 @@
 
 #include <vector>
 
-#include "cdyn/qp/step_solver.hpp"
+#include <Eigen/Core>
+
+#include "cdyn/base/sparse.hpp"
 
 namespace cdyn {
 
@@ -30,18 +33,8 @@ struct NodalRotation {
 // R (n × n), X = R X'.  InputError for an index out of range or used twice, or a zero normal.
 SparseMatrix rotation_matrix(const NodalRotation& rotation, int n);
 
-// The QP in rotated unknowns: S' = RᵀSR (or A' = RᵀAR, B' = BR), r' = Rᵀr.  lower and
-// upper are copied unchanged: give them for the rotated unknowns (normal component at ix,
-// tangential at iy).
-BoundQP rotate(const BoundQP& qp, const NodalRotation& rotation);
-
 // v ↦ Rᵀ v (global → local components) and v ↦ R v (local → global).
 Eigen::VectorXd to_local(const NodalRotation& rotation, const Eigen::VectorXd& v);
 Eigen::VectorXd to_global(const NodalRotation& rotation, const Eigen::VectorXd& v);
-
-// A result of the rotated QP brought back to global components: X = R X', λ = R λ'.
-// `active`, iterations and the KKT residual stay those of the rotated problem (the
-// active indices name rotated unknowns: ix is the normal component).
-QPResult rotate_back(const NodalRotation& rotation, QPResult result);
 
 }  // namespace cdyn

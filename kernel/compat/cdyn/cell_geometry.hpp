@@ -2,5 +2,5 @@
 // laid out by stage (docs/kernel_map.md).  Kept for one release; include the new path.
 #pragma once
 
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 

@@ -3,4 +3,5 @@
 #pragma once
 
 #include "cdyn/problems/nodal_rotation.hpp"
+#include "cdyn/qp/rotated_qp.hpp"
 

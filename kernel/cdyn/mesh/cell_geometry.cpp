@@ -1,5 +1,5 @@
 // cell_geometry.cpp — affine reference-to-physical maps.
-#include "cdyn/fe/cell_geometry.hpp"
+#include "cdyn/mesh/cell_geometry.hpp"
 
 namespace cdyn {
 
