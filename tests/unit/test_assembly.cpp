@@ -112,7 +112,7 @@ TEST(Assembly, TheBubbleIsOrthogonalToP1InEnergy) {
   const QuadratureRule q = cell_quadrature(2, 4);
   double integral[2] = {0.0, 0.0}, size = 0.0;
   for (int p = 0; p < q.size(); ++p) {
-    std::array<double, 2> g[4];
+    std::array<double, 3> g[4];
     shape_gradients(Element::P1Bubble, 2, q.points[p], g);
     for (int k = 0; k < 2; ++k) integral[k] += q.weights[p] * g[3][k];
     size += q.weights[p] * std::hypot(g[3][0], g[3][1]);

@@ -10,7 +10,7 @@ using namespace cdyn;
 
 namespace {
 const Element kAll[] = {Element::P0, Element::P1, Element::P1Bubble, Element::P2};
-const std::array<double, 2> kSamples[] = {{0.1, 0.2}, {0.3, 0.3}, {0.6, 0.1}, {0.05, 0.9}};
+const cdyn::RefPoint kSamples[] = {{0.1, 0.2}, {0.3, 0.3}, {0.6, 0.1}, {0.05, 0.9}};
 }  // namespace
 
 TEST(Elements, LagrangeBasesAreNodal) {
@@ -31,7 +31,7 @@ TEST(Elements, PartitionOfUnity) {
   // is an addition, hierarchical basis).
   for (int dim : {1, 2})
     for (const auto& xi0 : kSamples) {
-      const std::array<double, 2> xi = dim == 1 ? std::array<double, 2>{xi0[0], 0.0} : xi0;
+      const cdyn::RefPoint xi = dim == 1 ? cdyn::RefPoint{xi0[0], 0.0} : xi0;
       for (Element e : {Element::P1, Element::P2, Element::P1Bubble}) {
         double v[6];
         shape_values(e, dim, xi, v);
@@ -49,7 +49,7 @@ TEST(Elements, BubbleIsOneAtCentroidAndVanishesOnTheBoundary) {
     double v[4];
     shape_values(Element::P1Bubble, dim, local_node(Element::P0, dim, 0), v);
     EXPECT_NEAR(v[dim + 1], 1.0, 1e-15);
-    const std::array<double, 2> on_boundary = dim == 1 ? std::array<double, 2>{1.0, 0.0} : std::array<double, 2>{0.4, 0.6};
+    const cdyn::RefPoint on_boundary = dim == 1 ? cdyn::RefPoint{1.0, 0.0} : cdyn::RefPoint{0.4, 0.6};
     shape_values(Element::P1Bubble, dim, on_boundary, v);
     EXPECT_NEAR(v[dim + 1], 0.0, 1e-15);
   }
@@ -61,9 +61,9 @@ TEST(Elements, GradientsMatchFiniteDifferences) {
   for (Element e : kAll)
     for (int dim : {1, 2})
       for (const auto& xi0 : kSamples) {
-        const std::array<double, 2> xi = dim == 1 ? std::array<double, 2>{xi0[0], 0.0} : xi0;
+        const cdyn::RefPoint xi = dim == 1 ? cdyn::RefPoint{xi0[0], 0.0} : xi0;
         const int n = local_dofs(e, dim);
-        std::array<double, 2> g[6];
+        std::array<double, 3> g[6];
         shape_gradients(e, dim, xi, g);
         for (int a = 0; a < dim; ++a) {
           auto xp = xi, xm = xi;

@@ -74,7 +74,7 @@ TEST(FESpace, DofCountsAndVertexDofs) {
   const FESpace P2(m, Element::P2), P1b(m, Element::P1Bubble);
   const Eigen::VectorXd U2 = P2.interpolate(quad), Ub = P1b.interpolate(lin);
   for (int c = 0; c < m.n_cells(); ++c) {
-    const std::array<double, 2> xi{0.2, 0.3};
+    const cdyn::RefPoint xi{0.2, 0.3, 0.0};
     const Point x = CellGeometry(m, c).map(xi);
     EXPECT_NEAR(P2.value_in_cell(U2, c, xi), quad(x.x, x.y, 0), 1e-14);
     EXPECT_NEAR(P1b.value_in_cell(Ub, c, xi), lin(x.x, x.y, 0), 1e-14);

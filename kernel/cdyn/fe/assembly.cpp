@@ -18,7 +18,7 @@ namespace cdyn {
 
 namespace {
 
-using Grad = std::array<double, 2>;
+using Grad = std::array<double, 3>;  // a reference or physical gradient
 
 // Reference basis values and gradients at every quadrature point.
 struct Tabulation {
@@ -94,7 +94,7 @@ SparseMatrix assemble_laplace(const FESpace& W) {
       for (int i = 0; i < tw.n; ++i) g[i] = K.gradient(tw.gradient[p][i]);
       const double w = q.weights[p] * K.det;
       for (int i = 0; i < tw.n; ++i)
-        for (int j = 0; j < tw.n; ++j) local[i * tw.n + j] += w * (g[i][0] * g[j][0] + g[i][1] * g[j][1]);
+        for (int j = 0; j < tw.n; ++j) local[i * tw.n + j] += w * (g[i][0] * g[j][0] + g[i][1] * g[j][1] + g[i][2] * g[j][2]);
     }
     const auto d = W.cell_dofs(c);
     for (int i = 0; i < tw.n; ++i)
@@ -154,7 +154,7 @@ Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, dou
     for (int p = 0; p < q.size(); ++p) {
       const Point x = K.map(q.points[p]);
       for (int k = 0; k < W.components(); ++k) {
-        const double fw = f[k](x.x, x.y, t) * q.weights[p] * K.det;
+        const double fw = f[k](x, t) * q.weights[p] * K.det;
         for (int i = 0; i < tw.n; ++i) L[W.dof(d[i], k)] += fw * tw.value[p][i];
       }
     }
@@ -196,9 +196,9 @@ std::vector<FacetInCell> locate_facets(const Mesh& mesh) {
 }
 
 // Reference coordinates of the local vertices of the reference interval / triangle.
-std::array<double, 2> reference_vertex(int dim, int k) {
-  if (dim == 1) return {static_cast<double>(k), 0.0};
-  return {k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0};
+RefPoint reference_vertex(int dim, int k) {
+  if (dim == 1) return {static_cast<double>(k), 0.0, 0.0};
+  return {k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0, 0.0};
 }
 
 }  // namespace
@@ -210,24 +210,24 @@ Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>&
   const Mesh& mesh = W.mesh();
   const std::vector<FacetInCell> where = locate_facets(mesh);
   // A point facet (1D) is "integrated" by one evaluation with weight 1.
-  const QuadratureRule edge = mesh.dim == 1 ? QuadratureRule{{{0.0, 0.0}}, {1.0}} : gauss_legendre(W.degree() + 2);
+  const QuadratureRule edge = mesh.dim == 1 ? QuadratureRule{{{0.0, 0.0, 0.0}}, {1.0}} : gauss_legendre(W.degree() + 2);
   Eigen::VectorXd L = Eigen::VectorXd::Zero(W.n_dofs());
   std::vector<double> phi(W.local_dofs());
   for (std::size_t f = 0; f < mesh.boundary.size(); ++f) {
     if (std::find(parts.begin(), parts.end(), mesh.boundary[f].part) == parts.end()) continue;
     const FacetInCell& k = where[f];
-    const std::array<double, 2> xa = reference_vertex(mesh.dim, k.ka), xb = reference_vertex(mesh.dim, k.kb);
+    const RefPoint xa = reference_vertex(mesh.dim, k.ka), xb = reference_vertex(mesh.dim, k.kb);
     const Point& a = mesh.vertices[mesh.cells[k.cell][k.ka]];
     const Point& b = mesh.vertices[mesh.cells[k.cell][k.kb]];
     const double length = mesh.dim == 1 ? 1.0 : std::hypot(b.x - a.x, b.y - a.y);  // ds = |b − a| ds_ref
     const auto d = W.cell_dofs(k.cell);
     for (int p = 0; p < edge.size(); ++p) {
       const double s = edge.points[p][0];  // position along the edge, a at s = 0
-      const std::array<double, 2> xi{(1 - s) * xa[0] + s * xb[0], (1 - s) * xa[1] + s * xb[1]};
+      const RefPoint xi{(1 - s) * xa[0] + s * xb[0], (1 - s) * xa[1] + s * xb[1], 0.0};
       shape_values(W.element(), W.dim(), xi, phi.data());
-      const double x = (1 - s) * a.x + s * b.x, y = (1 - s) * a.y + s * b.y;
+      const Point x{(1 - s) * a.x + s * b.x, (1 - s) * a.y + s * b.y, (1 - s) * a.z + s * b.z};
       for (int c = 0; c < W.components(); ++c) {
-        const double gw = g[c](x, y, t) * edge.weights[p] * length;
+        const double gw = g[c](x, t) * edge.weights[p] * length;
         for (int i = 0; i < W.local_dofs(); ++i) L[W.dof(d[i], c)] += gw * phi[i];
       }
     }

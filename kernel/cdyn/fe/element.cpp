@@ -7,19 +7,19 @@ namespace cdyn {
 
 namespace {
 
-using Vec2 = std::array<double, 2>;
+using Vec3 = std::array<double, 3>;  // a reference point or gradient (ξ, η, ζ)
 
 // Barycentric coordinates of the reference cell and their (constant) gradients.
 struct Barycentric {
   double l[3];
-  Vec2 dl[3];
-  Barycentric(int dim, const Vec2& xi) {
+  Vec3 dl[3];
+  Barycentric(int dim, const Vec3& xi) {
     if (dim == 1) {
       l[0] = 1.0 - xi[0], l[1] = xi[0], l[2] = 0.0;
-      dl[0] = {-1.0, 0.0}, dl[1] = {1.0, 0.0}, dl[2] = {0.0, 0.0};
+      dl[0] = {-1.0, 0.0, 0.0}, dl[1] = {1.0, 0.0, 0.0}, dl[2] = {0.0, 0.0, 0.0};
     } else {
       l[0] = 1.0 - xi[0] - xi[1], l[1] = xi[0], l[2] = xi[1];
-      dl[0] = {-1.0, -1.0}, dl[1] = {1.0, 0.0}, dl[2] = {0.0, 1.0};
+      dl[0] = {-1.0, -1.0, 0.0}, dl[1] = {1.0, 0.0, 0.0}, dl[2] = {0.0, 1.0, 0.0};
     }
   }
 };
@@ -27,8 +27,10 @@ struct Barycentric {
 // Local edges of the triangle, in the order of the P2 edge dofs.
 constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
 
-Vec2 axpy(double a, const Vec2& x, double b, const Vec2& y) {
-  return {a * x[0] + b * y[0], a * x[1] + b * y[1]};
+Vec3 scale(double a, const Vec3& x) { return {a * x[0], a * x[1], a * x[2]}; }
+
+Vec3 axpy(double a, const Vec3& x, double b, const Vec3& y) {
+  return {a * x[0] + b * y[0], a * x[1] + b * y[1], a * x[2] + b * y[2]};
 }
 
 }  // namespace
@@ -71,7 +73,7 @@ int polynomial_degree(Element e, int dim) {
   return 0;
 }
 
-void shape_values(Element e, int dim, const Vec2& xi, double* v) {
+void shape_values(Element e, int dim, const RefPoint& xi, double* v) {
   const Barycentric b(dim, xi);
   const int nv = dim + 1;
   switch (e) {
@@ -96,12 +98,12 @@ void shape_values(Element e, int dim, const Vec2& xi, double* v) {
   }
 }
 
-void shape_gradients(Element e, int dim, const Vec2& xi, Vec2* g) {
+void shape_gradients(Element e, int dim, const RefPoint& xi, Vec3* g) {
   const Barycentric b(dim, xi);
   const int nv = dim + 1;
   switch (e) {
     case Element::P0:
-      g[0] = {0.0, 0.0};
+      g[0] = {0.0, 0.0, 0.0};
       return;
     case Element::P1:
       for (int k = 0; k < nv; ++k) g[k] = b.dl[k];
@@ -112,12 +114,12 @@ void shape_gradients(Element e, int dim, const Vec2& xi, Vec2* g) {
         g[nv] = axpy(4.0 * b.l[1], b.dl[0], 4.0 * b.l[0], b.dl[1]);
       } else {
         // ∇(27 λ0λ1λ2) = 27 (λ1λ2 ∇λ0 + λ0λ2 ∇λ1 + λ0λ1 ∇λ2)
-        const Vec2 g01 = axpy(b.l[1] * b.l[2], b.dl[0], b.l[0] * b.l[2], b.dl[1]);
+        const Vec3 g01 = axpy(b.l[1] * b.l[2], b.dl[0], b.l[0] * b.l[2], b.dl[1]);
         g[nv] = axpy(27.0, g01, 27.0 * b.l[0] * b.l[1], b.dl[2]);
       }
       return;
     case Element::P2:
-      for (int k = 0; k < nv; ++k) g[k] = {(4.0 * b.l[k] - 1.0) * b.dl[k][0], (4.0 * b.l[k] - 1.0) * b.dl[k][1]};
+      for (int k = 0; k < nv; ++k) g[k] = scale(4.0 * b.l[k] - 1.0, b.dl[k]);
       if (dim == 1) {
         g[2] = axpy(4.0 * b.l[1], b.dl[0], 4.0 * b.l[0], b.dl[1]);
       } else {
@@ -130,17 +132,17 @@ void shape_gradients(Element e, int dim, const Vec2& xi, Vec2* g) {
   }
 }
 
-std::array<double, 2> local_node(Element e, int dim, int k) {
-  const Vec2 vertex[3] = {{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}};
-  const Vec2 centroid = dim == 1 ? Vec2{0.5, 0.0} : Vec2{1.0 / 3.0, 1.0 / 3.0};
+RefPoint local_node(Element e, int dim, int k) {
+  const RefPoint vertex[3] = {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
+  const RefPoint centroid = dim == 1 ? RefPoint{0.5, 0.0, 0.0} : RefPoint{1.0 / 3.0, 1.0 / 3.0, 0.0};
   const int nv = dim + 1;
   if (e == Element::P0) return centroid;
   if (k < nv) return vertex[k];
   if (e == Element::P1Bubble) return centroid;
-  if (dim == 1) return {0.5, 0.0};
-  const Vec2& a = vertex[kEdge[k - 3][0]];
-  const Vec2& b = vertex[kEdge[k - 3][1]];
-  return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+  if (dim == 1) return {0.5, 0.0, 0.0};
+  const RefPoint& a = vertex[kEdge[k - 3][0]];
+  const RefPoint& b = vertex[kEdge[k - 3][1]];
+  return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.0};
 }
 
 }  // namespace cdyn

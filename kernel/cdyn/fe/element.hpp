@@ -19,6 +19,8 @@
 #include <array>
 #include <string>
 
+#include "cdyn/mesh/mesh.hpp"
+
 namespace cdyn {
 
 enum class Element { P0, P1, P1Bubble, P2 };
@@ -39,14 +41,13 @@ int polynomial_degree(Element e, int dim);
 inline bool is_continuous(Element e) { return e != Element::P0; }
 
 // The local basis at reference point xi: values[k] = φ_k(xi).
-void shape_values(Element e, int dim, const std::array<double, 2>& xi, double* values);
+void shape_values(Element e, int dim, const RefPoint& xi, double* values);
 
-// Reference gradients: grads[k] = ∇_ξ φ_k(xi) (second entry 0 in 1D).
-void shape_gradients(Element e, int dim, const std::array<double, 2>& xi,
-                     std::array<double, 2>* grads);
+// Reference gradients: grads[k] = ∇_ξ φ_k(xi) (entries beyond dim are 0).
+void shape_gradients(Element e, int dim, const RefPoint& xi, std::array<double, 3>* grads);
 
 // The nodal point of local dof k in reference coordinates (vertex, edge midpoint,
 // centroid for the bubble and for P0).
-std::array<double, 2> local_node(Element e, int dim, int k);
+RefPoint local_node(Element e, int dim, int k);
 
 }  // namespace cdyn

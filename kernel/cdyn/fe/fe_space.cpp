@@ -49,7 +49,7 @@ FESpace::FESpace(const Mesh& mesh, Element element, int components)
           edges_.push_back({key.first, key.second});
           const Point& pa = mesh.vertices[a];
           const Point& pb = mesh.vertices[b];
-          dof_points_.push_back({0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y)});
+          dof_points_.push_back({0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y), 0.5 * (pa.z + pb.z)});
         }
         cell_dofs_[static_cast<std::size_t>(c) * local_dofs_ + 3 + e] = nv + it->second;
       }
@@ -83,7 +83,7 @@ Eigen::VectorXd FESpace::interpolate(const std::vector<Field>& f, double t) cons
   if (static_cast<int>(f.size()) != components_) throw InputError("interpolate: one field per component expected");
   Eigen::VectorXd U(n_dofs());
   for (int s = 0; s < n_scalar_dofs_; ++s)
-    for (int k = 0; k < components_; ++k) U[dof(s, k)] = f[k](dof_points_[s].x, dof_points_[s].y, t);
+    for (int k = 0; k < components_; ++k) U[dof(s, k)] = f[k](dof_points_[s], t);
   if (element_ == Element::P1Bubble) {
     // Hierarchical bubble: its coefficient is f(centroid) minus the P1 part there
     // (every hat function equals 1/(dim+1) at the centroid).
@@ -100,7 +100,7 @@ Eigen::VectorXd FESpace::interpolate(const std::vector<Field>& f, double t) cons
   return U;
 }
 
-double FESpace::value_in_cell(const Eigen::VectorXd& U, int c, const std::array<double, 2>& xi, int k) const {
+double FESpace::value_in_cell(const Eigen::VectorXd& U, int c, const RefPoint& xi, int k) const {
   double phi[6];
   shape_values(element_, dim(), xi, phi);
   const auto dofs = cell_dofs(c);

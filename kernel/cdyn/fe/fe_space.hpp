@@ -25,12 +25,10 @@
 #include <vector>
 
 #include "cdyn/fe/element.hpp"
+#include "cdyn/fe/field.hpp"
 #include "cdyn/mesh/mesh.hpp"
 
 namespace cdyn {
-
-// A scalar field of space and time, f(x, y, t) (y = 0 in 1D).
-using Field = std::function<double(double x, double y, double t)>;
 
 class FESpace {
  public:
@@ -80,7 +78,7 @@ class FESpace {
   Eigen::VectorXd interpolate(const std::vector<Field>& f, double t = 0.0) const;
 
   // Value of component k of the finite element function U in cell c at reference ξ.
-  double value_in_cell(const Eigen::VectorXd& U, int c, const std::array<double, 2>& xi, int k = 0) const;
+  double value_in_cell(const Eigen::VectorXd& U, int c, const RefPoint& xi, int k = 0) const;
 
  private:
   const Mesh* mesh_;

@@ -17,7 +17,7 @@ double l2_error(const FESpace& W, const Eigen::VectorXd& U, const Field& u, doub
     const CellGeometry K(W.mesh(), c);
     for (int p = 0; p < q.size(); ++p) {
       const Point x = K.map(q.points[p]);
-      const double d = u(x.x, x.y, t) - W.value_in_cell(U, c, q.points[p]);
+      const double d = u(x, t) - W.value_in_cell(U, c, q.points[p]);
       e2 += q.weights[p] * K.det * d * d;
     }
   }
@@ -28,7 +28,7 @@ double h1_seminorm_error(const FESpace& W, const Eigen::VectorXd& U, const Gradi
   if (W.components() != 1) throw InputError("h1_seminorm_error: a scalar space is expected");
   const QuadratureRule q = cell_quadrature(W.dim(), 2 * W.degree() + 4);
   const int n = W.local_dofs();
-  std::vector<std::array<double, 2>> g(n);
+  std::vector<std::array<double, 3>> g(n);
   double e2 = 0.0;
   for (int c = 0; c < W.mesh().n_cells(); ++c) {
     const CellGeometry K(W.mesh(), c);

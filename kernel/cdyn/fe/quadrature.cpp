@@ -19,7 +19,7 @@ QuadratureRule gauss_legendre(int n) {
   QuadratureRule q;
   for (int i = 0; i < n; ++i) {
     const double v0 = eig.eigenvectors()(0, i);
-    q.points.push_back({0.5 * (eig.eigenvalues()(i) + 1.0), 0.0});  // map to [0, 1]
+    q.points.push_back({0.5 * (eig.eigenvalues()(i) + 1.0), 0.0, 0.0});  // map to [0, 1]
     q.weights.push_back(v0 * v0);                                    // 2 v0² × ½
   }
   return q;
@@ -36,7 +36,7 @@ QuadratureRule cell_quadrature(int dim, int degree) {
   for (int j = 0; j < qt.size(); ++j)
     for (int i = 0; i < qs.size(); ++i) {
       const double s = qs.points[i][0], t = qt.points[j][0];
-      q.points.push_back({s * (1.0 - t), t});
+      q.points.push_back({s * (1.0 - t), t, 0.0});
       q.weights.push_back(qs.weights[i] * qt.weights[j] * (1.0 - t));
     }
   return q;

@@ -16,10 +16,12 @@
 #include <array>
 #include <vector>
 
+#include "cdyn/mesh/mesh.hpp"
+
 namespace cdyn {
 
 struct QuadratureRule {
-  std::vector<std::array<double, 2>> points;  // reference coordinates (ξ, η); η = 0 in 1D
+  std::vector<RefPoint> points;  // reference coordinates (ξ, η, ζ); those beyond the dimension 0
   std::vector<double> weights;
   int size() const { return static_cast<int>(weights.size()); }
 };

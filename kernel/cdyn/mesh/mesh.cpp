@@ -37,7 +37,13 @@ double Mesh::cell_measure(int c) const {
   const Point& b = vertices[t[1]];
   if (dim == 1) return b.x - a.x;
   const Point& p = vertices[t[2]];
-  return 0.5 * ((b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y));
+  if (dim == 2) return 0.5 * ((b.x - a.x) * (p.y - a.y) - (p.x - a.x) * (b.y - a.y));
+  // det[b − a, p − a, q − a] / 6
+  const Point& q = vertices[t[3]];
+  const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {p.x - a.x, p.y - a.y, p.z - a.z},
+               w[3] = {q.x - a.x, q.y - a.y, q.z - a.z};
+  return (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+          u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0;
 }
 
 double Mesh::measure() const {
@@ -53,27 +59,28 @@ double Mesh::h_max() const {
       for (int j = i + 1; j <= dim; ++j) {
         const Point& a = vertices[t[i]];
         const Point& b = vertices[t[j]];
-        h = std::max(h, std::hypot(b.x - a.x, b.y - a.y));
+        h = std::max(h, std::hypot(b.x - a.x, b.y - a.y, b.z - a.z));
       }
   return h;
 }
 
 void Mesh::complete_boundary() {
-  // A facet is a sorted vertex pair (2D) or a single vertex (1D, second entry -1).
-  using Key = std::array<int, 2>;
-  std::map<Key, int> count;
-  auto key = [this](const std::array<int, 2>& v) {
-    if (dim == 1) return Key{v[0], -1};
-    return Key{std::min(v[0], v[1]), std::max(v[0], v[1])};
+  // A facet is the sorted set of its dim vertices (the unused entries −1); the facets
+  // of a cell are its vertex sets without one vertex.
+  using Key = std::array<int, 3>;
+  auto key = [this](const std::array<int, 3>& v) {
+    Key k{-1, -1, -1};
+    std::copy(v.begin(), v.begin() + dim, k.begin());
+    std::sort(k.begin(), k.begin() + dim);
+    return k;
   };
-  for (const auto& t : cells) {
-    if (dim == 1) {
-      ++count[Key{t[0], -1}];
-      ++count[Key{t[1], -1}];
-    } else {
-      for (int e = 0; e < 3; ++e) ++count[key({t[e], t[(e + 1) % 3]})];
+  std::map<Key, int> count;
+  for (const auto& t : cells)
+    for (int skip = 0; skip <= dim; ++skip) {
+      std::array<int, 3> f{-1, -1, -1};
+      for (int k = 0; k < dim; ++k) f[k] = t[(skip + 1 + k) % (dim + 1)];
+      ++count[key(f)];
     }
-  }
   std::map<Key, bool> known;
   for (const auto& f : boundary) known[key(f.vertices)] = true;
   for (const auto& [k, n] : count)
@@ -81,7 +88,7 @@ void Mesh::complete_boundary() {
 }
 
 void Mesh::check(const std::string& source) const {
-  if (dim != 1 && dim != 2) throw InputError(source + ": mesh dimension must be 1 or 2");
+  if (dim < 1 || dim > 3) throw InputError(source + ": mesh dimension must be 1, 2 or 3");
   if (cells.empty()) throw InputError(source + ": the mesh has no cells");
   for (int c = 0; c < n_cells(); ++c) {
     for (int i = 0; i <= dim; ++i)
@@ -102,9 +109,9 @@ Mesh interval_mesh(int n, double length) {
   Mesh m;
   m.dim = 1;
   for (int i = 0; i <= n; ++i) m.vertices.push_back({length * i / n, 0.0});
-  for (int i = 0; i < n; ++i) m.cells.push_back({i, i + 1, -1});
+  for (int i = 0; i < n; ++i) m.cells.push_back({i, i + 1, -1, -1});
   m.part_names = {"left", "right"};
-  m.boundary = {{{0, -1}, 0}, {{n, -1}, 1}};
+  m.boundary = {{{0, -1, -1}, 0}, {{n, -1, -1}, 1}};
   return m;
 }
 
@@ -122,15 +129,15 @@ Mesh unit_square_mesh(int n, double lx, double ly) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       // Split along the diagonal (i,j)-(i+1,j+1): lower-right then upper-left triangle.
-      m.cells.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
-      m.cells.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+      m.cells.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1), -1});
+      m.cells.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1), -1});
     }
   m.part_names = {"bottom", "right", "top", "left"};
   for (int i = 0; i < n; ++i) {
-    m.boundary.push_back({{v(i, 0), v(i + 1, 0)}, 0});
-    m.boundary.push_back({{v(n, i), v(n, i + 1)}, 1});
-    m.boundary.push_back({{v(i + 1, n), v(i, n)}, 2});
-    m.boundary.push_back({{v(0, i + 1), v(0, i)}, 3});
+    m.boundary.push_back({{v(i, 0), v(i + 1, 0), -1}, 0});
+    m.boundary.push_back({{v(n, i), v(n, i + 1), -1}, 1});
+    m.boundary.push_back({{v(i + 1, n), v(i, n), -1}, 2});
+    m.boundary.push_back({{v(0, i + 1), v(0, i), -1}, 3});
   }
   return m;
 }

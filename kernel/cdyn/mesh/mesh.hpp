@@ -1,15 +1,18 @@
-// mesh.hpp — simplicial meshes in 1D (intervals) and 2D (triangles).
+// mesh.hpp — simplicial meshes: intervals (1D), triangles (2D), tetrahedra (3D).
 //
 // The seed's triangulation 𝒯^h ("A model problem": a regular mesh of Ω, its vertex
 // set 𝒜 where the constraints act).  A mesh is geometry and topology only: vertex
 // coordinates, cells given by their vertices, and the boundary facets (points in 1D,
-// edges in 2D), each facet tagged with the boundary part it belongs to.  It knows
-// nothing of finite elements.
+// edges in 2D, triangles in 3D), each facet tagged with the boundary part it belongs
+// to.  It knows nothing of finite elements.
 //
 // Conventions
-//  - Coordinates are stored as (x, y); a 1D mesh has y = 0 everywhere.
-//  - A cell has dim + 1 vertices, stored in cells[c][0..dim]; in 2D they are in
-//    counter-clockwise order (positive Jacobian), in 1D left to right.
+//  - Coordinates are stored as (x, y, z); a 1D mesh has y = z = 0, a 2D mesh z = 0.
+//  - A cell has dim + 1 vertices, stored in cells[c][0..dim] (the entries after dim are
+//    unused); they are ordered so that the Jacobian of the map from the reference cell
+//    is positive: left to right in 1D, counter-clockwise in 2D, a positively oriented
+//    tetrahedron in 3D.
+//  - A facet has dim vertices, vertices[0..dim-1] (the others unused).
 //  - Boundary parts have names ("left", "bottom", or a gmsh physical group name).
 //    A facet on the topological boundary that belongs to no named part has part -1.
 #pragma once
@@ -23,20 +26,28 @@ namespace cdyn {
 struct Point {
   double x = 0.0;
   double y = 0.0;
+  double z = 0.0;
 };
+
+// Coordinates (ξ, η, ζ) of a point of the reference cell (those beyond the cell's
+// dimension are 0): the interval [0, 1], the triangle (0,0), (1,0), (0,1), the
+// tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1).
+using RefPoint = std::array<double, 3>;
 
 struct BoundaryFacet {
-  std::array<int, 2> vertices{-1, -1};  // 1D: only vertices[0] is used
-  int part = -1;                        // index into Mesh::part_names, or -1
+  std::array<int, 3> vertices{-1, -1, -1};  // the first dim entries are used
+  int part = -1;                            // index into Mesh::part_names, or -1
 };
 
+using Cell = std::array<int, 4>;  // the first dim + 1 entries are used
+
 struct Mesh {
-  int dim = 2;                                 // 1 (intervals) or 2 (triangles)
+  int dim = 2;                                 // 1 (intervals), 2 (triangles) or 3 (tetrahedra)
   std::vector<Point> vertices;                 // coordinates
-  std::vector<std::array<int, 3>> cells;       // 1D: entries [0], [1] only
+  std::vector<Cell> cells;                     // vertices of each cell
   std::vector<BoundaryFacet> boundary;         // every boundary facet, tagged
   std::vector<std::string> part_names;         // boundary part names
-  std::vector<int> cell_region;                // region tag of each cell (gmsh physical surface), or empty
+  std::vector<int> cell_region;                // region tag of each cell (gmsh physical group), or empty
   std::vector<std::string> region_names;       // names of those regions
 
   int n_vertices() const { return static_cast<int>(vertices.size()); }
@@ -49,7 +60,8 @@ struct Mesh {
   // The vertices lying on the named boundary parts (sorted, unique).
   std::vector<int> part_vertices(const std::vector<int>& parts) const;
 
-  // Signed measure of a cell: its length (1D) or area (2D, positive for CCW cells).
+  // Signed measure of a cell: its length (1D), area (2D) or volume (3D), positive for
+  // cells ordered as the conventions above say.
   double cell_measure(int c) const;
 
   // Sum of the cell measures: |Omega|.

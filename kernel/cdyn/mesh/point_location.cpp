@@ -12,16 +12,15 @@ CellPoint locate(const Mesh& mesh, const Point& p) {
   const double tol = 1e-10;
   for (int c = 0; c < mesh.n_cells(); ++c) {
     const CellGeometry K(mesh, c);
-    const double dx = p.x - K.a0.x, dy = p.y - K.a0.y;
-    std::array<double, 2> xi;
-    if (mesh.dim == 1) {
-      xi = {dx / K.J[0][0], 0.0};
-      if (xi[0] >= -tol && xi[0] <= 1 + tol) return {c, xi};
-      continue;
+    const RefPoint xi = K.reference(p);
+    // inside: every barycentric coordinate ξ_k and 1 − Σ ξ_k is ≥ −tol
+    double sum = 0.0;
+    bool inside = true;
+    for (int k = 0; k < mesh.dim; ++k) {
+      inside = inside && xi[k] >= -tol;
+      sum += xi[k];
     }
-    // ξ = J⁻¹ (p − a0), and J⁻¹ = (J⁻ᵀ)ᵀ.
-    xi = {K.invJT[0][0] * dx + K.invJT[1][0] * dy, K.invJT[0][1] * dx + K.invJT[1][1] * dy};
-    if (xi[0] >= -tol && xi[1] >= -tol && xi[0] + xi[1] <= 1 + tol) return {c, xi};
+    if (inside && sum <= 1 + tol) return {c, xi};
   }
   return {};
 }
@@ -30,7 +29,7 @@ int nearest_vertex(const Mesh& mesh, const Point& p) {
   int best = -1;
   double d = std::numeric_limits<double>::infinity();
   for (int v = 0; v < mesh.n_vertices(); ++v) {
-    const double dv = std::hypot(mesh.vertices[v].x - p.x, mesh.vertices[v].y - p.y);
+    const double dv = std::hypot(mesh.vertices[v].x - p.x, mesh.vertices[v].y - p.y, mesh.vertices[v].z - p.z);
     if (dv < d) d = dv, best = v;
   }
   return best;

@@ -11,7 +11,7 @@ namespace cdyn {
 
 struct CellPoint {
   int cell = -1;                 // -1: outside the mesh
-  std::array<double, 2> xi{};    // reference coordinates in that cell
+  RefPoint xi{};                 // reference coordinates in that cell
 };
 
 // The first cell containing p (barycentric coordinates ≥ −1e-10, so points on edges
