@@ -15,8 +15,7 @@ struct SeedMembrane {
 
   SeedMembrane(int n, bool obstacle) : mesh(unit_square_mesh(n)) {
     ScalarWaveData d;
-    d.displacement = Element::P1Bubble;
-    d.velocity = "P0";
+    d.mass = cdyn::MassSpec::parse("P0", Element::P1Bubble);
     d.f = [](double, double, double) { return -0.6; };
     d.dirichlet_parts = {mesh.part_index("bottom"), mesh.part_index("right"), mesh.part_index("top"),
                          mesh.part_index("left")};

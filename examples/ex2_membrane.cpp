@@ -38,14 +38,13 @@ int main() {
   const Mesh mesh = unit_square_mesh(n);
 
   // ----- 2. The problem: spaces, matrices, mass model, constraints ----------------------
-  // build_scalar_wave does, in order: W^h = P1+ and its Dirichlet lifting (dirichlet.hpp);
-  // A = ∫∇φ_i·∇φ_j and L = ∫f φ_i (assembly.hpp); M = Bᵀ C⁻¹ B from the pair P1+/P0
-  // (mass_model.hpp; C is diagonal for P0, so M is sparse); the bounds U_v ≥ g at the
+  // build_scalar_wave does, in order: W^h = P1+ and its Dirichlet lifting (fe/dirichlet.hpp);
+  // A = ∫∇φ_i·∇φ_j and L = ∫f φ_i (fe/assembly.hpp); M = Bᵀ C⁻¹ B from the pair P1+/P0
+  // (mass/mass_model.hpp; C is diagonal for P0, so M is sparse); the bounds U_v ≥ g at the
   // free vertices, i.e. K̄^h = {G U ≤ α} with G = −I there.  Everything lives on the
   // free dofs; the full field is P U + U_D.
   ScalarWaveData data;
-  data.displacement = Element::P1Bubble;  // W^h
-  data.velocity = "P0";                   // H^h
+  data.mass = MassSpec::pair(Element::P1Bubble, Element::P0);  // W^h = P1+, H^h = P0
   data.f = [](double, double, double) { return -0.6; };
   data.dirichlet_parts = {0, 1, 2, 3};    // the whole boundary
   data.dirichlet_value = [](double, double, double) { return 0.02; };

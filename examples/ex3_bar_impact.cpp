@@ -55,8 +55,7 @@ struct Errors {
 Errors run(const Method& m, const ClampedBarImpact& exact, int n, double dt, double T) {
   const Mesh mesh = interval_mesh(n, exact.L);  // parts "left" (x = 0) and "right" (x = L)
   ScalarWaveData d;
-  d.displacement = m.W;
-  d.velocity = m.velocity;
+  d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
   d.rho = exact.rho;
   d.kappa = exact.E;                          // A = E ∫ φ_i' φ_j'
   d.f = [](double, double, double) { return 0.0; };

@@ -84,8 +84,7 @@ class ProjectedJacobi : public StepSolver {
 // ----- 2. The problem: the membrane of example 2 ------------------------------------------
 ConstrainedProblem membrane(const Mesh& mesh) {
   ScalarWaveData d;
-  d.displacement = Element::P1Bubble;
-  d.velocity = "P0";
+  d.mass = cdyn::MassSpec::parse("P0", Element::P1Bubble);
   d.f = [](double, double, double) { return -0.6; };
   d.dirichlet_parts = {0, 1, 2, 3};
   d.dirichlet_value = [](double, double, double) { return 0.02; };

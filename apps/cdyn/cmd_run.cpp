@@ -202,10 +202,10 @@ std::vector<std::string> command_line_paths(std::vector<std::string> sets) {
 int cmd_run(const RunOptions& opt) {
   Scene scene = Scene::load(opt.scene);
   for (const auto& a : command_line_paths(opt.sets)) scene.set(a);
-  const bool write_fields = scene.boolean("output.fields", true);
-  const bool make_plots = scene.boolean("output.plots", true);
   Simulation sim = make_simulation(scene);
-  const auto u_exact = exact_displacement(scene, sim);
+  const bool write_fields = sim.spec.output.fields;
+  const bool make_plots = sim.spec.output.plots;
+  const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
 
   const std::filesystem::path out = opt.out.empty() ? std::filesystem::path("out") / sim.scene_name : std::filesystem::path(opt.out);

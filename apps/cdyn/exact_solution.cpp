@@ -5,7 +5,6 @@
 
 #include "cdyn/exact/bar_exact.hpp"
 #include "cdyn/base/error.hpp"
-#include "expression.hpp"
 #include "cdyn/fe/norms.hpp"
 
 namespace cdyn::app {
@@ -14,9 +13,9 @@ namespace {
 
 // The scene's initial displacement and velocity must be the solution's at t = 0
 // (checked at the vertices and mid-cells to 1e-12).
-void check_initial_data(const Scene& s, const Mesh& mesh, const std::function<double(double, double)>& u) {
-  const Field u0 = parse_expression(s.string("initial.u", "0"), "initial.u");
-  const double L = s.number("mesh.length", 1.0);
+void check_initial_data(const SceneSpec& s, const Mesh& mesh, const std::function<double(double, double)>& u) {
+  const Field& u0 = s.initial.u[0].field;
+  const double L = s.mesh.length;
   const int n = 2 * mesh.n_cells();
   for (int i = 0; i <= n; ++i) {
     const double x = L * i / n;
@@ -27,19 +26,20 @@ void check_initial_data(const Scene& s, const Mesh& mesh, const std::function<do
 
 }  // namespace
 
-std::optional<std::function<double(double, double)>> exact_displacement(const Scene& s, const Simulation& sim) {
-  if (!s.has("exact.solution")) return std::nullopt;
-  const std::string name = s.string("exact.solution");
+std::optional<std::function<double(double, double)>> exact_displacement(const Simulation& sim) {
+  const SceneSpec& s = sim.spec;
+  if (s.exact_solution.empty()) return std::nullopt;
+  const std::string& name = s.exact_solution;
   if (sim.model != "bar") throw InputError("exact.solution: '" + name + "' needs physics.model = \"bar\"");
-  const double E = s.number("physics.E", 1.0), rho = s.number("physics.rho", 1.0), L = s.number("mesh.length", 1.0);
-  const double g = parse_expression(s.string("obstacle.g", "0"), "obstacle.g")(0.0, 0.0, 0.0);
+  const double E = s.physics.stiffness, rho = s.physics.rho, L = s.mesh.length;
+  const double g = s.obstacle.g.field(Point{}, 0.0);
   std::function<double(double, double)> u;
   if (name == "clamped_bar") {
     if (std::abs(g) > 0.0) throw InputError("exact.solution: clamped_bar has its obstacle at g = 0");
-    ClampedBarImpact b{E, rho, L, parse_expression(s.string("initial.u", "0"), "initial.u")(0.0, 0.0, 0.0)};
+    ClampedBarImpact b{E, rho, L, s.initial.u[0].field(Point{}, 0.0)};
     u = [b](double x, double t) { return b.displacement(x, t); };
   } else if (name == "falling_bar") {
-    FallingBar b{E, rho, L, -parse_expression(s.string("initial.v", "0"), "initial.v")(0.0, 0.0, 0.0), -g};
+    FallingBar b{E, rho, L, -s.initial.v[0].field(Point{}, 0.0), -g};
     if (!(b.v0 > 0.0 && b.d > 0.0)) throw InputError("exact.solution: falling_bar needs initial.v < 0 and obstacle.g < 0");
     u = [b](double x, double t) { return b.displacement(x, t); };
   } else {

@@ -10,15 +10,13 @@
 #include <functional>
 #include <optional>
 
-#include "scene.hpp"
 #include "simulation.hpp"
 
 namespace cdyn::app {
 
 // u(x, t) of the solution the scene names, or nothing without `exact.solution`.
 // InputError for an unknown name or data that do not match the solution.
-std::optional<std::function<double(double x, double t)>> exact_displacement(const Scene& scene,
-                                                                           const Simulation& sim);
+std::optional<std::function<double(double x, double t)>> exact_displacement(const Simulation& sim);
 
 // ‖u_h(T) − u(T)‖_L2 over the mesh, u_h the full field of the state.
 double l2_error_at(const Simulation& sim, const std::function<double(double, double)>& u, const State& s);

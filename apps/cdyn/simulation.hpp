@@ -1,8 +1,7 @@
-// simulation.hpp — from a scene to everything a run needs: the mesh, the
-// constrained problem, the initial state, the step solver and the scheme.
-//
-// This is the one place that reads scene keys into the kernel's plain structures
-// (DESIGN.md §4 lists the keys); the kernel itself knows no scene file.
+// simulation.hpp — from a scene's typed description (scene_spec.hpp) to everything a
+// run needs: the mesh, the constrained problem, the initial state, the step solver and
+// the scheme.  The kernel itself knows no scene key: an InputError it throws names its
+// own parameter, which becomes the scene key here (scene_key).
 #pragma once
 
 #include <memory>
@@ -14,7 +13,7 @@
 #include "cdyn/mesh/point_location.hpp"
 #include "cdyn/qp/step_solver.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
-#include "scene.hpp"
+#include "scene_spec.hpp"
 
 namespace cdyn::app {
 
@@ -26,6 +25,7 @@ struct Probe {
 };
 
 struct Simulation {
+  SceneSpec spec;  // the scene as read and checked
   std::string scene_name, model, pair, scheme_name, solver_name;
   double dt = 0, T = 0, tol = 0;
   int n_steps = 0, output_every = 1;
@@ -51,9 +51,10 @@ struct Simulation {
 };
 
 // Builds and checks everything (bad input throws InputError naming the key).
-Simulation make_simulation(const Scene& scene);
+Simulation make_simulation(const SceneSpec& spec);
+inline Simulation make_simulation(const Scene& scene) { return make_simulation(read_scene(scene)); }
 
 // The mesh a scene describes (mesh.kind: interval, unit_square, gmsh).
-Mesh make_mesh(const Scene& scene);
+Mesh make_mesh(const SceneSpec& spec);
 
 }  // namespace cdyn::app

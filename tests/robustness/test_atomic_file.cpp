@@ -115,8 +115,7 @@ TEST(AtomicFile, FieldsWriterLeavesOnlyCompleteFiles) {
   const fs::path dir = scratch();
   const Mesh mesh = interval_mesh(2);
   ScalarWaveData d;
-  d.displacement = Element::P1;
-  d.velocity = "P0";
+  d.mass = cdyn::MassSpec::parse("P0", Element::P1);
   d.f = [](double, double, double) { return 0.0; };
   d.dirichlet_parts = {mesh.part_index("right")};
   d.dirichlet_value = [](double, double, double) { return 0.0; };

@@ -87,8 +87,7 @@ using testing::tight;
 // x = 0 (u(0) ≥ g), clamped at x = L (clamped = true) or free at both ends.
 inline ConstrainedProblem bar(const Mesh& mesh, const Method& m, bool clamped, double g) {
   ScalarWaveData d;
-  d.displacement = m.W;
-  d.velocity = m.velocity;
+  d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
   d.f = [](double, double, double) { return 0.0; };
   if (clamped) d.dirichlet_parts = {mesh.part_index("right")};
   d.dirichlet_value = [](double, double, double) { return 0.0; };

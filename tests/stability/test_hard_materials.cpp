@@ -42,8 +42,7 @@ Mesh block(int n) {
 
 ElasticContactData hanging_block(const Mesh& mesh, const Method& m, double E, double nu, bool obstacle) {
   ElasticContactData d;
-  d.displacement = m.W;
-  d.velocity = m.velocity;
+  d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
   const Lame l = lame_parameters(E, nu);
   d.lambda = l.lambda;
   d.mu = l.mu;

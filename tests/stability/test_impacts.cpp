@@ -143,8 +143,7 @@ TEST(Grazing, MembraneRestingOnTheObstacleWithNoLoad) {
   const Mesh mesh = unit_square_mesh(8);
   for (const Method& m : kMethods) {
     ScalarWaveData d;
-    d.displacement = m.W;
-    d.velocity = m.velocity;
+    d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
     d.f = [](double, double, double) { return 0.0; };
     d.dirichlet_parts = {0, 1, 2, 3};
     d.dirichlet_value = [](double, double, double) { return 0.0; };

@@ -27,8 +27,7 @@ inline std::string label(const Method& m) { return to_string(m.W) + "/" + m.velo
 // u0 = 0.02, v0 = −0.3 sin(πx) sin(πy), f = −0.6, u ≥ 0 at the vertices.
 inline ConstrainedProblem membrane(const Mesh& mesh, const Method& m, bool obstacle) {
   ScalarWaveData d;
-  d.displacement = m.W;
-  d.velocity = m.velocity;
+  d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
   d.f = [](double, double, double) { return -0.6; };
   d.dirichlet_parts = {0, 1, 2, 3};
   d.dirichlet_value = [](double, double, double) { return 0.02; };

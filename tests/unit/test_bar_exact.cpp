@@ -273,8 +273,7 @@ struct Errors {
 
 ConstrainedProblem bar_problem(const Mesh& mesh, const Case& k, const Method& m) {
   ScalarWaveData d;
-  d.displacement = m.W;
-  d.velocity = m.velocity;
+  d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
   d.rho = k.rho;
   d.kappa = k.E;
   d.f = [](double, double, double) { return 0.0; };

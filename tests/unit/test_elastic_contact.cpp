@@ -59,8 +59,7 @@ std::string label(const Method& m) { return to_string(m.W) + "/" + m.velocity; }
 
 ElasticContactData hanging_block(const Mesh& mesh, double theta, const Method& m, bool obstacle) {
   ElasticContactData d;
-  d.displacement = m.W;
-  d.velocity = m.velocity;
+  d.mass = cdyn::MassSpec::parse(m.velocity, m.W);
   const Lame l = lame_parameters(1.0, 0.3);
   d.lambda = l.lambda;
   d.mu = l.mu;
@@ -206,7 +205,8 @@ TEST(ElasticContact, RejectsBadInput) {
   bad([](ElasticContactData& e) { e.lambda = -2.0 * e.mu; });
   bad([](ElasticContactData& e) { e.obstacle_normal = {0.0, 0.0}; });
   bad([](ElasticContactData& e) { e.contact_parts.clear(); });
-  bad([](ElasticContactData& e) { e.velocity = "P7"; });
+  bad([](ElasticContactData& e) { e.mass = cdyn::MassSpec::pair(Element::P1, Element::P2); });  // P2 velocity, P1 W
+  EXPECT_THROW(cdyn::MassSpec::parse("P7"), InputError);
   EXPECT_THROW(build_elastic_contact(interval_mesh(4), d), InputError);
   EXPECT_THROW(lame_parameters(1.0, 0.5), InputError);
   EXPECT_THROW(lame_parameters(-1.0, 0.3), InputError);
@@ -430,10 +430,10 @@ TEST(ElasticContact, ConditionTwelveWithNormalConstraints) {
     setup.constrained_vertices = mesh.part_vertices({mesh.part_index("bottom")});
     setup.components = 2;
     setup.normal = normal;
-    const WellPosedness w = wellposedness_row(mesh, "P1+/P0", setup);
+    const WellPosedness w = condition12_on(mesh, cdyn::MassSpec::parse("P1+/P0"), setup);
     EXPECT_TRUE(w.satisfied);
     EXPECT_EQ(w.n_g, n + 1);
-    EXPECT_FALSE(wellposedness_row(mesh, "P1/P1", setup).satisfied);
+    EXPECT_FALSE(condition12_on(mesh, cdyn::MassSpec::parse("P1/P1"), setup).satisfied);
 
     // The same β from the problem's own constraints: the bounds on its (rotated)
     // unknowns, G' = rows e_i of the constrained unknowns, B' = B R.

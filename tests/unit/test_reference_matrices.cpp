@@ -48,8 +48,7 @@ std::map<std::string, Invariants> read_reference(const std::string& program, int
 
 ConstrainedProblem problem(const Mesh& mesh, Element W, const std::string& H, bool dirichlet) {
   ScalarWaveData d;
-  d.displacement = W;
-  d.velocity = H;
+  d.mass = cdyn::MassSpec::parse(H, W);
   d.f = [](double, double, double) { return 0.0; };
   if (dirichlet) d.dirichlet_parts = {0, 1, 2, 3};
   d.dirichlet_value = [](double, double, double) { return 0.0; };

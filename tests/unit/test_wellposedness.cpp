@@ -87,7 +87,7 @@ TEST(Wellposedness, SeedMembraneTable) {
     const int interior = (n - 1) * (n - 1), cells = 2 * n * n, edges = 3 * n * n + 2 * n;
     const std::string where = "membrane n=" + std::to_string(n);
 
-    const WellPosedness p1p1 = wellposedness_row(mesh, "P1/P1", setup);
+    const WellPosedness p1p1 = condition12_on(mesh, cdyn::MassSpec::parse("P1/P1"), setup);
     print(where, p1p1);
     EXPECT_EQ(p1p1.n_W, interior);
     EXPECT_EQ(p1p1.n_H, interior);
@@ -96,13 +96,13 @@ TEST(Wellposedness, SeedMembraneTable) {
     EXPECT_EQ(p1p1.beta, 0.0);
     EXPECT_FALSE(p1p1.satisfied);
 
-    const WellPosedness p1p0 = wellposedness_row(mesh, "P1/P0", setup);
+    const WellPosedness p1p0 = condition12_on(mesh, cdyn::MassSpec::parse("P1/P0"), setup);
     print(where, p1p0);
     EXPECT_EQ(p1p0.n_H, cells);
     EXPECT_EQ(p1p0.dim_ker_B, 0);  // N_W < N_H and B of full column rank
     EXPECT_FALSE(p1p0.satisfied);
 
-    const WellPosedness seed = wellposedness_row(mesh, "P1+/P0", setup);
+    const WellPosedness seed = condition12_on(mesh, cdyn::MassSpec::parse("P1+/P0"), setup);
     print(where, seed);
     EXPECT_EQ(seed.n_W, interior + cells);
     EXPECT_EQ(seed.n_H, cells);
@@ -111,26 +111,26 @@ TEST(Wellposedness, SeedMembraneTable) {
     EXPECT_TRUE(seed.satisfied);
     EXPECT_GT(seed.beta, 1e-3);  // the seed's claim, with a margin of 1e5 over the tolerance
 
-    const WellPosedness p1bp1 = wellposedness_row(mesh, "P1+/P1", setup);
+    const WellPosedness p1bp1 = condition12_on(mesh, cdyn::MassSpec::parse("P1+/P1"), setup);
     print(where, p1bp1);
     EXPECT_EQ(p1bp1.n_H, interior);  // H^h = P1 with the boundary vertices removed
     EXPECT_EQ(p1bp1.dim_ker_B, cells);
 
-    const WellPosedness p2p1 = wellposedness_row(mesh, "P2/P1", setup);
+    const WellPosedness p2p1 = condition12_on(mesh, cdyn::MassSpec::parse("P2/P1"), setup);
     print(where, p2p1);
     EXPECT_EQ(p2p1.n_W, interior + (edges - 4 * n));
     EXPECT_EQ(p2p1.dim_ker_B, edges - 4 * n);
 
 
     for (const char* m : {"consistent", "lumped"}) {
-      const WellPosedness r = wellposedness_row(mesh, m, setup);
+      const WellPosedness r = condition12_on(mesh, cdyn::MassSpec::parse(m), setup);
       print(where, r);
       EXPECT_EQ(r.dim_ker_B, 0);  // M positive definite: Ker M = {0}
       EXPECT_FALSE(r.satisfied);
     }
     // Redistribution is a boundary method: with every free vertex constrained there is
     // no vertex left to carry the mass.
-    EXPECT_THROW(wellposedness_row(mesh, "redistributed", setup), InputError);
+    EXPECT_THROW(condition12_on(mesh, cdyn::MassSpec::parse("redistributed"), setup), InputError);
 
     // Measured decisions (docs/semi_discretization.md explains them), pinned with β far
     // from the tolerance on either side.
@@ -141,7 +141,7 @@ TEST(Wellposedness, SeedMembraneTable) {
     if (n > 10) continue;  // the rest costs ~2 s at n = 20 and teaches nothing new there
     // P2/P0: B is rank deficient (dim Ker B = N_W − N_H + 1) and β = 1 (vertex functions
     // of P2 have zero mean on every triangle, so they all lie in Ker B).
-    const WellPosedness p2p0 = wellposedness_row(mesh, "P2/P0", setup);
+    const WellPosedness p2p0 = condition12_on(mesh, cdyn::MassSpec::parse("P2/P0"), setup);
     print(where, p2p0);
     EXPECT_EQ(p2p0.dim_ker_B, p2p0.n_W - p2p0.n_H + 1);
     EXPECT_NEAR(p2p0.beta, 1.0, 1e-13);
@@ -172,7 +172,7 @@ TEST(Wellposedness, P1BubbleOverP0MatchesItsClosedForm) {
     WellPosednessSetup setup;
     setup.dirichlet_parts = parts(mesh, {"bottom", "right", "top", "left"});
     setup.constrained_vertices = all_vertices(mesh);
-    const WellPosedness r = wellposedness_row(mesh, "P1+/P0", setup);
+    const WellPosedness r = condition12_on(mesh, cdyn::MassSpec::parse("P1+/P0"), setup);
     const FESpace P1(mesh, Element::P1);
     const DirichletLift bc(P1, setup.dirichlet_parts);
     Eigen::MatrixXd E = Eigen::MatrixXd::Zero(mesh.n_cells(), bc.n_free());
@@ -198,7 +198,7 @@ TEST(Wellposedness, BoundaryContact) {
     setup.dirichlet_parts = parts(mesh, {"top"});
     setup.constrained_vertices = mesh.part_vertices(parts(mesh, {"bottom"}));
     for (const std::string spec : {"P1/P1", "P1/P0", "P1+/P0", "P1+/P1", "P2/P1", "consistent", "redistributed"}) {
-      const WellPosedness r = wellposedness_row(mesh, spec, setup);
+      const WellPosedness r = condition12_on(mesh, cdyn::MassSpec::parse(spec), setup);
       print("membrane, contact bottom", r);
       EXPECT_EQ(r.n_g, 11);
       if (spec == "redistributed") {
@@ -218,7 +218,7 @@ TEST(Wellposedness, BoundaryContact) {
     setup.dirichlet_parts = parts(mesh, {"right"});
     setup.constrained_vertices = {0};
     for (const std::string spec : {"P1/P1", "P1/P0", "P1+/P0", "P1+/P1", "P2/P1", "consistent", "redistributed"}) {
-      const WellPosedness r = wellposedness_row(mesh, spec, setup);
+      const WellPosedness r = condition12_on(mesh, cdyn::MassSpec::parse(spec), setup);
       print("bar, contact x=0", r);
       EXPECT_EQ(r.n_g, 1);
       if (spec == "redistributed") {
@@ -240,7 +240,7 @@ TEST(Wellposedness, BoundaryContact) {
     setup.components = 2;
     setup.normal = Point{0.0, -1.0};
     for (const std::string spec : {"P1/P1", "P1/P0", "P1+/P0", "P1+/P1", "P2/P1", "consistent", "redistributed"}) {
-      const WellPosedness r = wellposedness_row(mesh, spec, setup);
+      const WellPosedness r = condition12_on(mesh, cdyn::MassSpec::parse(spec), setup);
       print("elasticity, contact bottom", r);
       EXPECT_EQ(r.n_g, 9);
       if (spec == "redistributed") {
@@ -270,12 +270,12 @@ TEST(Wellposedness, InputChecks) {
   setup.constrained_vertices = all_vertices(mesh);
   setup.dense_limit = 20;
   try {
-    wellposedness_row(mesh, "P1+/P0", setup);
+    condition12_on(mesh, cdyn::MassSpec::parse("P1+/P0"), setup);
     ADD_FAILURE() << "no InputError above the dense limit";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dense limit"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(wellposedness_row(mesh, "P1+", setup), InputError);  // not a pair
+  EXPECT_THROW(condition12_on(mesh, cdyn::MassSpec::parse("P1+"), setup), InputError);  // not a pair
 }
 
 // The two structured-mesh defects above are topological: the FreeFEM square's vertices
@@ -301,7 +301,7 @@ TEST(Wellposedness, UnstructuredMeshHasNoColouringDefects) {
   setup.dirichlet_parts = all_parts;
   setup.constrained_vertices = all_vertices(mesh);
   for (const std::string spec : {"P1+/P0", "P1+/P1", "P2/P1", "P2/P0"}) {
-    const WellPosedness r = wellposedness_row(mesh, spec, setup);
+    const WellPosedness r = condition12_on(mesh, cdyn::MassSpec::parse(spec), setup);
     print("lshape.geo", r);
     EXPECT_TRUE(r.satisfied) << spec;
     if (spec == "P2/P0") {

@@ -16,4 +16,11 @@ Eigen::VectorXd least_squares(const SparseMatrix& K, const Eigen::VectorXd& b) {
   return x;
 }
 
+bool full_column_rank(const SparseMatrix& K) {
+  if (K.rows() < K.cols()) return false;
+  Eigen::SPQR<SparseMatrix> qr(K);
+  if (qr.info() != Eigen::Success) throw NumericalError("rank: the QR factorization failed");
+  return qr.rank() == K.cols();
+}
+
 }  // namespace cdyn

@@ -18,4 +18,8 @@ namespace cdyn {
 // Throws NumericalError if the factorization fails.
 Eigen::VectorXd least_squares(const SparseMatrix& K, const Eigen::VectorXd& b);
 
+// Whether K has full column rank (Ker K = {0}): the numerical rank of the same QR, with
+// SuiteSparseQR's default threshold (20 (m + n) ε times the largest column norm).
+bool full_column_rank(const SparseMatrix& K);
+
 }  // namespace cdyn

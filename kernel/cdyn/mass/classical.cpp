@@ -14,10 +14,13 @@ namespace {
 class ClassicalMassModel final : public MassModel {
  public:
   // M the mass on the free dofs; (Bs, Cs) its saddle factors, Bsᵀ Cs⁻¹ Bs = M.
-  ClassicalMassModel(std::string name, SparseMatrix M, SparseMatrix Bs, SparseMatrix Cs)
-      : name_(std::move(name)), M_(std::move(M)), Bs_(std::move(Bs)), Cs_(std::move(Cs)) {}
+  ClassicalMassModel(MassSpec spec, SparseMatrix M, SparseMatrix Bs, SparseMatrix Cs)
+      : spec_(spec), M_(std::move(M)), Bs_(std::move(Bs)), Cs_(std::move(Cs)) {}
 
-  std::string name() const override { return name_; }
+  std::string name() const override { return spec_.name(); }
+  // Consistent and lumped are positive definite; the redistributed M has Ker M = span{e_c}.
+  bool is_invertible() const override { return spec_.model != MassSpec::Model::Redistributed; }
+  bool velocity_is_rate() const override { return true; }
   int n_velocity() const override { return static_cast<int>(M_.rows()); }
   std::optional<SparseMatrix> matrix() const override { return M_; }
   SaddleForm saddle(const SparseMatrix& A, double k) const override { return SaddleForm{A, Bs_, Cs_, k}; }
@@ -43,10 +46,10 @@ class ClassicalMassModel final : public MassModel {
  private:
   void check(const Eigen::VectorXd& x) const {
     if (x.size() != M_.rows())
-      throw InputError("mass model " + name_ + ": a vector of " + std::to_string(x.size()) + " entries, expected " +
+      throw InputError("mass model " + spec_.name() + ": a vector of " + std::to_string(x.size()) + " entries, expected " +
                        std::to_string(M_.rows()));
   }
-  std::string name_;
+  MassSpec spec_;
   SparseMatrix M_, Bs_, Cs_;
 };
 
@@ -61,15 +64,17 @@ SparseMatrix diagonal(const Eigen::VectorXd& d) {
 }  // namespace
 
 std::unique_ptr<MassModel> make_classical_mass_model(const FESpace& W, const DirichletLift& bc,
-                                                     const std::string& name, double rho,
+                                                     MassSpec::Model model, double rho,
                                                      const std::vector<int>& contact_free_dofs) {
-  if (!W.has_vertex_dofs()) throw InputError("mass " + name + ": the displacement space must be continuous");
+  const MassSpec spec{model, W.element(), Element::P0};
+  const std::string name = spec.name();
+  if (!W.has_vertex_dofs()) throw InputError("mass", name + ": the displacement space must be continuous");
   const SparseMatrix Mfull = rho * assemble_mass(W, W);
   const SparseMatrix Mff = bc.restrict(Mfull);  // the consistent mass on the free dofs
 
-  if (name == "consistent") return std::make_unique<ClassicalMassModel>(name, Mff, Mff, Mff);
+  if (model == MassSpec::Model::Consistent) return std::make_unique<ClassicalMassModel>(spec, Mff, Mff, Mff);
 
-  if (name == "lumped") {
+  if (model == MassSpec::Model::Lumped) {
     // Row sums against the interpolant of the constant: (M_full 1_h)_i = ρ∫φ_i for the
     // P1 and P2 nodal bases (and for the vertex rows of P1+), lumped BEFORE the Dirichlet
     // elimination so that 1ᵀM1 = ρ|Ω| per component when nothing is fixed.
@@ -79,25 +84,24 @@ std::unique_ptr<MassModel> make_classical_mass_model(const FESpace& W, const Dir
     const double scale = rowsum.cwiseAbs().maxCoeff();
     for (Eigen::Index i = 0; i < d.size(); ++i)
       if (!(d[i] > 1e-12 * scale))  // exact zeros of 2D P2 vertex rows come out at ~1e-17
-        throw InputError("mass lumped: the row sum of free dof " + std::to_string(i) + " is " + std::to_string(d[i]) +
-                         " (row-sum lumping of " + to_string(W.element()) + " in " + std::to_string(W.dim()) +
-                         "D gives vertices no mass); use mass consistent or a pair");
+        throw InputError("mass", "lumped: the row sum of free dof " + std::to_string(i) + " is " +
+                                     std::to_string(d[i]) + " (row-sum lumping of " + to_string(W.element()) + " in " +
+                                     std::to_string(W.dim()) + "D gives vertices no mass); use consistent or a pair");
     const SparseMatrix D = diagonal(d);
-    return std::make_unique<ClassicalMassModel>(name, D, D, D);
+    return std::make_unique<ClassicalMassModel>(spec, D, D, D);
   }
 
-  if (name == "redistributed") {
+  {  // redistributed
     if (contact_free_dofs.empty())
-      throw InputError("mass redistributed: no contact dofs given (it removes the inertia of the contact nodes)");
+      throw InputError("mass", "redistributed: no contact dofs given (it removes the inertia of the contact nodes)");
     const SparseMatrix T = redistribution_operator(W, bc, contact_free_dofs);
     const SparseMatrix MT = Mff * T;
     SparseMatrix M = SparseMatrix(T.transpose()) * MT;  // M_red = Tᵀ M_ff T
     M = 0.5 * (M + SparseMatrix(M.transpose()));        // exact symmetry
     M.prune(0.0);
     M.makeCompressed();
-    return std::make_unique<ClassicalMassModel>(name, M, MT, Mff);
+    return std::make_unique<ClassicalMassModel>(spec, M, MT, Mff);
   }
-  throw InputError("method.mass: unknown mass model '" + name + "' (consistent, lumped, redistributed)");
 }
 
 }  // namespace cdyn

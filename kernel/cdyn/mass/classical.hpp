@@ -20,9 +20,9 @@
 
 namespace cdyn {
 
-// name: "consistent" | "lumped" | "redistributed"; contact_free_dofs only for the last.
+// model: Consistent, Lumped or Redistributed; contact_free_dofs only for the last.
 std::unique_ptr<MassModel> make_classical_mass_model(const FESpace& W, const DirichletLift& bc,
-                                                     const std::string& name, double rho,
+                                                     MassSpec::Model model, double rho,
                                                      const std::vector<int>& contact_free_dofs);
 
 }  // namespace cdyn

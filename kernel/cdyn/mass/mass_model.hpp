@@ -20,9 +20,10 @@
 #include <optional>
 #include <string>
 
+#include "cdyn/base/sparse.hpp"
 #include "cdyn/fe/assembly.hpp"
 #include "cdyn/fe/dirichlet.hpp"
-#include "cdyn/base/sparse.hpp"
+#include "cdyn/mass/mass_spec.hpp"
 
 namespace cdyn {
 
@@ -30,8 +31,17 @@ class MassModel {
  public:
   virtual ~MassModel() = default;
 
-  // "P1+/P0", "consistent", ... as given in the scene.
+  // "P1+/P0", "consistent", ... (MassSpec::name()).
   virtual std::string name() const = 0;
+
+  // Whether M is invertible (no massless displacement: Ker M = Ker B = {0}).  The
+  // pairs with N_H < N_W and the redistributed mass are not; a pair with N_H ≥ N_W is
+  // when B has full column rank (checked once, on the first call).
+  virtual bool is_invertible() const = 0;
+
+  // Whether the velocity is the displacement rate itself, V = U̇ in W^h (the classical
+  // models: H^h = W^h with C = B = M), as the explicit schemes need.
+  virtual bool velocity_is_rate() const = 0;
 
   // Number of velocity unknowns N_H (free dofs of W^h for the classical models).
   virtual int n_velocity() const = 0;
@@ -63,42 +73,42 @@ class MassModel {
 
 }  // namespace cdyn
 
-// ----- construction (mass_model.cpp, mass_mixed.cpp, mass_classical.cpp) ---------------
+// ----- construction (mass_model.cpp, mixed.cpp, classical.cpp) ---------------
 // See docs/semi_discretization.md for the construction of each M.
 
 #include <vector>
 
 namespace cdyn {
 
-// The mass model named by `spec` on the free dofs of W^h (Dirichlet dofs of `bc`
-// eliminated), with density ρ:
+// The mass model `spec` on the free dofs of W^h (Dirichlet dofs of `bc` eliminated),
+// with density ρ (spec.W must be W's element):
 //
-//  - a velocity element, "P0", "P1", "P1+", "P2" (or the whole pair "P1+/P0", whose
-//    first half must then be W's element): the seed's pair W^h/H^h, H^h with as many
-//    components as W^h.  B and C are assembled with ρ (ρB, ρC), so that M = ρ Bᵀ C⁻¹ B,
-//    V = C⁻¹ B U̇ does not depend on ρ and the kinetic energy is ½ Vᵀ (ρC) V.
-//    A continuous H^h takes the Dirichlet conditions of W^h: its dofs at the fixed
-//    vertices (and, for H^h = W^h, every fixed dof) are removed, so the velocity
-//    vanishes where the displacement is prescribed and P1/P1 is exactly the consistent
-//    mass M_ff.  H^h = P2 needs W^h = P2 (its edge dofs are identified through W).
-//  - "consistent": M_ff = ρ ∫φ_iφ_j on the free dofs;
-//  - "lumped": row-sum lumping, M = diag(ρ M_full 1_h) on the free dofs (1_h the
+//  - a pair W^h/H^h (seed eqs. 10–11), H^h with as many components as W^h.  B and C are
+//    assembled with ρ (ρB, ρC), so that M = ρ Bᵀ C⁻¹ B, V = C⁻¹ B U̇ does not depend on
+//    ρ and the kinetic energy is ½ Vᵀ (ρC) V.  A continuous H^h takes the Dirichlet
+//    conditions of W^h: its dofs at the fixed vertices (and, for H^h = W^h, every fixed
+//    dof) are removed, so the velocity vanishes where the displacement is prescribed and
+//    P1/P1 is exactly the consistent mass M_ff.  H^h = P2 needs W^h = P2 (its edge dofs
+//    are identified through W).
+//  - consistent: M_ff = ρ ∫φ_iφ_j on the free dofs;
+//  - lumped: row-sum lumping, M = diag(ρ M_full 1_h) on the free dofs (1_h the
 //    interpolant of the constant 1: the row sums for P1 and P2); InputError if a
 //    diagonal entry is not positive (2D P2, whose vertex rows sum to zero);
-//  - "redistributed": M = Tᵀ M_ff T (mass_redistribution.hpp), no inertia on
+//  - redistributed: M = Tᵀ M_ff T (mass/redistribution.hpp), no inertia on
 //    `contact_free_dofs` (indices among the free dofs, vertex dofs only), total mass,
 //    centre of mass and second moments of M_ff kept exactly.  For a vector space give
 //    the contact dofs you want massless: both components of each contact node (then
 //    every normal N_i is in Ker M; the recommended choice) or only the one component
 //    the constraint acts on (an axis-aligned normal).
-// `contact_free_dofs` is ignored by every other model.  Throws InputError for an
-// unknown spec, ρ ≤ 0, a pair W's mesh cannot carry, or a redistribution with no donors.
-std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const std::string& spec,
+// `contact_free_dofs` is ignored by every other model.  Throws InputError (parameter
+// "rho" for ρ ≤ 0, "pair" for a pair W's mesh cannot carry, a spec whose W is not W's
+// element, or a redistribution with no donors).
+std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const MassSpec& spec,
                                            double rho, const std::vector<int>& contact_free_dofs = {});
 
-// The names make_mass_model accepts besides the velocity elements.
-std::vector<std::string> classical_mass_models();  // {"consistent", "lumped", "redistributed"}
-bool is_classical_mass_model(const std::string& spec);
+// The same with the spec in text form (MassSpec::parse with W's element).
+std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const std::string& spec,
+                                           double rho, const std::vector<int>& contact_free_dofs = {});
 
 // The blocks of the pair W^h/H^h on the free dofs: B (N_H × n_free) and C (N_H × N_H),
 // both multiplied by ρ; the H^h dofs removed by the Dirichlet conditions (see

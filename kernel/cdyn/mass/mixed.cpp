@@ -6,6 +6,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/linalg/least_squares.hpp"
+#include "cdyn/linalg/sparse_cholesky.hpp"
 
 namespace cdyn {
 
@@ -51,6 +52,29 @@ class MixedMassModel final : public MassModel {
 
   std::string name() const override { return name_; }
   int n_velocity() const override { return static_cast<int>(B_.rows()); }
+  // V is a vector of H^h, its own space, even for H^h = W^h (where V = U̇ numerically,
+  // but a rotation of W^h's unknowns does not turn it: mass/rotated.hpp).
+  bool velocity_is_rate() const override { return false; }
+
+  // Ker M = Ker B: none when N_H < N_W; otherwise B must have full column rank, which an
+  // explicit M shows by a Cholesky factorization and B = C (H^h = W^h) by construction;
+  // for the other continuous H^h the rank comes from a rank-revealing sparse QR.
+  bool is_invertible() const override {
+    if (!invertible_) {
+      if (B_.rows() < B_.cols())
+        invertible_ = false;
+      else if (identity_)
+        invertible_ = true;
+      else if (M_) {
+        SparseCholesky chol;
+        chol.analyze(*M_);
+        invertible_ = chol.factorize(*M_) < 0;
+      } else {
+        invertible_ = full_column_rank(B_);
+      }
+    }
+    return *invertible_;
+  }
   std::optional<SparseMatrix> matrix() const override { return M_; }
   SaddleForm saddle(const SparseMatrix& A, double k) const override { return SaddleForm{A, B_, C_, k}; }
 
@@ -91,13 +115,14 @@ class MixedMassModel final : public MassModel {
   Eigen::VectorXd Cdiag_;
   std::optional<SparseMatrix> M_;
   Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholC_;
+  mutable std::optional<bool> invertible_;  // is_invertible(), computed on the first call
 };
 
 }  // namespace
 
 MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, double rho, bool velocity_dirichlet) {
-  if (!W.has_vertex_dofs()) throw InputError("pair: the displacement space W^h must be continuous (not P0)");
-  if (bc.n_full() != W.n_dofs()) throw InputError("pair: the Dirichlet partition does not belong to W^h");
+  if (!W.has_vertex_dofs()) throw InputError("pair", "the displacement space W^h must be continuous (not P0)");
+  if (bc.n_full() != W.n_dofs()) throw InputError("mixed_blocks: the Dirichlet partition does not belong to W^h");
   const FESpace H(W.mesh(), He, W.components());
   const SparseMatrix Bfull = assemble_mass(H, W);  // B_ij = ∫ψ_i φ_j  (seed, eq. 10)
   const SparseMatrix Cfull = assemble_mass(H, H);  // C_ij = ∫ψ_i ψ_j
@@ -115,8 +140,8 @@ MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, 
         for (int k = 0; k < W.components(); ++k)
           if (bc.free_index(W.vertex_dof(v, k)) < 0) fixed[H.dof(v, k)] = 1;
     } else {
-      throw InputError("pair " + to_string(W.element()) + "/" + to_string(He) +
-                       ": a P2 velocity space needs W^h = P2 (its boundary edge dofs come from W^h)");
+      throw InputError("pair", to_string(W.element()) + "/" + to_string(He) +
+                                   ": a P2 velocity space needs W^h = P2 (its boundary edge dofs come from W^h)");
     }
   }
   std::vector<int> row_index(H.n_dofs(), -1);

@@ -17,9 +17,11 @@ class RotatedMassModel final : public MassModel {
       : inner_(std::move(inner)),
         R_(std::move(R)),
         Rt_(R_.transpose()),
-        velocity_in_W_(is_classical_mass_model(inner_->name())) {}
+        velocity_in_W_(inner_->velocity_is_rate()) {}
 
   std::string name() const override { return inner_->name(); }
+  bool is_invertible() const override { return inner_->is_invertible(); }
+  bool velocity_is_rate() const override { return inner_->velocity_is_rate(); }
   int n_velocity() const override { return inner_->n_velocity(); }
 
   // M' = Rᵀ M R.  Entries that cancel are dropped: a lumped M with equal masses m on

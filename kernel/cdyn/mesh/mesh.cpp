@@ -101,11 +101,11 @@ void Mesh::check(const std::string& source) const {
 }
 
 Mesh interval_mesh(int n, double length) {
-  if (n < 1) throw InputError("mesh.n: the interval needs at least one cell");
+  if (n < 1) throw InputError("n", "the interval needs at least one cell");
   // (isfinite: an infinite length would give the vertices inf·0 = NaN)
-  if (!(length > 0.0) || !std::isfinite(length)) throw InputError("mesh.length: must be positive and finite");
+  if (!(length > 0.0) || !std::isfinite(length)) throw InputError("length", "must be positive and finite");
   // vertex indices are ints
-  if (n >= std::numeric_limits<int>::max()) throw InputError("mesh.n: too many cells (" + std::to_string(n) + ")");
+  if (n >= std::numeric_limits<int>::max()) throw InputError("n", "too many cells (" + std::to_string(n) + ")");
   Mesh m;
   m.dim = 1;
   for (int i = 0; i <= n; ++i) m.vertices.push_back({length * i / n, 0.0});
@@ -116,9 +116,9 @@ Mesh interval_mesh(int n, double length) {
 }
 
 Mesh unit_square_mesh(int n, double lx, double ly) {
-  if (n < 1) throw InputError("mesh.n: the square needs at least one cell per side");
+  if (n < 1) throw InputError("n", "the square needs at least one cell per side");
   // (n + 1)² vertices and 2n² cells are indexed by int: refuse n where that overflows
-  if (n > 46339) throw InputError("mesh.n: too many cells per side (" + std::to_string(n) + "; at most 46339)");
+  if (n > 46339) throw InputError("n", "too many cells per side (" + std::to_string(n) + "; at most 46339)");
   if (!(lx > 0.0 && ly > 0.0) || !std::isfinite(lx) || !std::isfinite(ly))
     throw InputError("unit_square_mesh: the side lengths must be positive and finite");
   Mesh m;

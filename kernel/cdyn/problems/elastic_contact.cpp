@@ -15,15 +15,15 @@ namespace {
 
 Point unit(const Point& n) {
   const double norm = std::hypot(n.x, n.y);
-  if (!(norm > 0.0) || !std::isfinite(norm)) throw InputError("obstacle.normal: must be a nonzero finite vector");
+  if (!(norm > 0.0) || !std::isfinite(norm)) throw InputError("normal", "must be a nonzero finite vector");
   return {n.x / norm, n.y / norm};
 }
 
 void check_material(const ElasticContactData& d) {
-  if (!(d.rho > 0.0) || !std::isfinite(d.rho)) throw InputError("physics.rho: must be positive");
-  if (!(d.mu > 0.0) || !std::isfinite(d.mu)) throw InputError("physics.mu: the shear modulus must be positive");
+  if (!(d.rho > 0.0) || !std::isfinite(d.rho)) throw InputError("rho", "must be positive");
+  if (!(d.mu > 0.0) || !std::isfinite(d.mu)) throw InputError("mu", "the shear modulus must be positive");
   if (!(d.lambda + d.mu > 0.0) || !std::isfinite(d.lambda))
-    throw InputError("physics.lambda: plane strain needs λ + μ > 0 (got λ = " + std::to_string(d.lambda) + ")");
+    throw InputError("lambda", "plane strain needs λ + μ > 0 (got λ = " + std::to_string(d.lambda) + ")");
 }
 
 // The constraint n·u(a) ≥ g(a) at the contact vertices, written as bounds on the
@@ -78,8 +78,8 @@ ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& 
 }  // namespace
 
 Lame lame_parameters(double E, double nu) {
-  if (!(E > 0.0) || !std::isfinite(E)) throw InputError("physics.E: Young's modulus must be positive");
-  if (!(nu > -1.0 && nu < 0.5)) throw InputError("physics.nu: Poisson's ratio must lie in (−1, ½)");
+  if (!(E > 0.0) || !std::isfinite(E)) throw InputError("E", "Young's modulus must be positive");
+  if (!(nu > -1.0 && nu < 0.5)) throw InputError("nu", "Poisson's ratio must lie in (−1, ½)");
   return {E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))};
 }
 
@@ -89,11 +89,11 @@ double obstacle_gap(const ElasticContactData& d, const Point& a) {
 }
 
 ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& d) {
-  if (mesh.dim != 2) throw InputError("physics.model elasticity: a 2D mesh is needed (plane strain)");
+  if (mesh.dim != 2) throw InputError("mesh", "plane-strain elasticity needs a 2D mesh");
   check_material(d);
-  if (d.obstacle && d.contact_parts.empty()) throw InputError("obstacle.where: elasticity needs a contact part Γ_C");
+  if (d.obstacle && d.contact_parts.empty()) throw InputError("contact", "elasticity with an obstacle needs a contact part Γ_C");
   ConstrainedProblem p;
-  p.W = std::make_unique<FESpace>(mesh, d.displacement, 2);
+  p.W = std::make_unique<FESpace>(mesh, d.mass.W, 2);
   const FESpace& W = *p.W;
   p.bc = std::make_unique<DirichletLift>(W, d.dirichlet_parts, d.dirichlet_components);
   p.A_full = assemble_elasticity(W, d.lambda, d.mu);
@@ -128,7 +128,7 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
 
   // Redistributed mass: both components of each contact node are massless, so every
   // normal N_i is in Ker M whatever its direction (mass_model.hpp).
-  std::unique_ptr<MassModel> mass = make_mass_model(W, *p.bc, d.velocity, d.rho, contact.contact_dofs);
+  std::unique_ptr<MassModel> mass = make_mass_model(W, *p.bc, d.mass, d.rho, contact.contact_dofs);
 
   if (contact.rotation.nodes.empty()) {
     p.A = A_ff;

@@ -40,9 +40,7 @@ namespace cdyn {
 inline double zero_field(double, double, double) { return 0.0; }
 
 struct ElasticContactData {
-  Element displacement = Element::P1Bubble;   // W^h, two components
-  std::string velocity = "P0";     // H^h element ("P0", "P1") or a classical model
-                                   // ("consistent", "lumped", "redistributed")
+  MassSpec mass;                   // the pair W^h/H^h (P1+/P0 by default) or a classical mass on W^h
   double rho = 1.0;                // density
   double lambda = 1.0, mu = 1.0;   // Lamé parameters (plane strain; lame_parameters(E, ν))
   std::array<Field, 2> f{zero_field, zero_field};   // body force (f_x, f_y)(x, y, t)

@@ -9,12 +9,11 @@ namespace cdyn {
 Mesh oscillator_mesh() { return interval_mesh(1, 1.0); }
 
 ConstrainedProblem build_oscillator(const Mesh& mesh, const OscillatorData& o) {
-  if (!(o.m > 0.0)) throw InputError("physics.m: the mass must be positive");
-  if (!(o.k >= 0.0)) throw InputError("physics.k: the stiffness must be non-negative");
+  if (!(o.m > 0.0)) throw InputError("m", "the mass must be positive");
+  if (!(o.k >= 0.0)) throw InputError("k", "the stiffness must be non-negative");
   if (mesh.dim != 1 || mesh.n_cells() != 1) throw InputError("oscillator: needs oscillator_mesh()");
   ScalarWaveData d;
-  d.displacement = Element::P1;
-  d.velocity = "lumped";
+  d.mass = {MassSpec::Model::Lumped, Element::P1, Element::P0};
   d.rho = 2.0 * o.m;  // lumped mass of the free vertex: ρh/2 = m
   const Field F = o.F;
   d.f = [F](double x, double y, double t) { return 2.0 * F(x, y, t); };  // ∫ f φ = f/2 = F

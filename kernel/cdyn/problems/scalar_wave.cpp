@@ -8,10 +8,10 @@
 namespace cdyn {
 
 ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) {
-  if (!(d.rho > 0.0)) throw InputError("physics.rho: must be positive");
-  if (!(d.kappa > 0.0)) throw InputError("physics stiffness (E or tension): must be positive");
+  if (!(d.rho > 0.0)) throw InputError("rho", "must be positive");
+  if (!(d.kappa > 0.0)) throw InputError("kappa", "the stiffness (E or the tension) must be positive");
   ConstrainedProblem p;
-  p.W = std::make_unique<FESpace>(mesh, d.displacement);
+  p.W = std::make_unique<FESpace>(mesh, d.mass.W);
   const FESpace& W = *p.W;
   p.bc = std::make_unique<DirichletLift>(W, d.dirichlet_parts);
   p.A_full = d.kappa * assemble_laplace(W);
@@ -43,7 +43,7 @@ ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) 
     p.lower[i] = d.obstacle_g(a.x, a.y, 0.0);
     p.constrained.push_back(i);
   }
-  p.mass = make_mass_model(W, *p.bc, d.velocity, d.rho, contact);
+  p.mass = make_mass_model(W, *p.bc, d.mass, d.rho, contact);
   return p;
 }
 

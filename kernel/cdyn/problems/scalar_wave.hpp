@@ -18,9 +18,7 @@
 namespace cdyn {
 
 struct ScalarWaveData {
-  Element displacement = Element::P1Bubble;  // W^h
-  std::string velocity = "P0";     // H^h element ("P0", "P1") or a classical model
-                                   // ("consistent", "lumped", "redistributed")
+  MassSpec mass;                   // the pair W^h/H^h (P1+/P0 by default) or a classical mass on W^h
   double rho = 1.0;                // density
   double kappa = 1.0;              // tension or Young's modulus
   Field f;                         // load f(x, y, t)

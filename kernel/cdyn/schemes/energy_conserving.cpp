@@ -79,9 +79,10 @@ std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, 
   // A massless mode z ∈ Ker M obeys zᵀA (U^{n+1} + 2Uⁿ + U^{n−1})/4 = zᵀL: the double
   // root −1 of x² + 2x + 1 lets it grow like (−1)ⁿ n (measured: P1+/P0 and P2/P1 on the
   // membrane sink by 0.3 in 800 steps).  So M must be invertible.
-  if (p.mass->n_velocity() < p.n_free() || p.mass->name() == "redistributed")
-    throw InputError("time.scheme: energy_conserving needs an invertible mass matrix (its massless modes are unstable): "
-                     "use method.mass = consistent or lumped, or the pairs P1/P1, P1/P0 — not " + p.mass->name());
+  if (!p.mass->is_invertible())
+    throw InputError("scheme", "energy_conserving needs an invertible mass matrix (its massless modes are unstable): "
+                               "the consistent or lumped mass, or a pair with Ker B = {0} such as P1/P1 — not " +
+                               p.mass->name());
   return std::make_unique<EnergyConserving>(p, solver, dt, condense);
 }
 

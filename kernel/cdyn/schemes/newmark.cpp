@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/base/format.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
@@ -50,8 +51,8 @@ class Newmark final : public StepQPScheme {
 
 std::unique_ptr<TimeScheme> make_newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta,
                                          double gamma, bool condense) {
-  if (!(beta > 0.0 && beta <= 0.5)) throw InputError("time.beta: Newmark's β must lie in (0, ½] (got " + std::to_string(beta) + ")");
-  if (!(gamma >= 0.5 && gamma <= 1.0)) throw InputError("time.gamma: Newmark's γ must lie in [½, 1] (got " + std::to_string(gamma) + ")");
+  if (!(beta > 0.0 && beta <= 0.5)) throw InputError("beta", "Newmark's β must lie in (0, ½] (got " + to_text(beta) + ")");
+  if (!(gamma >= 0.5 && gamma <= 1.0)) throw InputError("gamma", "Newmark's γ must lie in [½, 1] (got " + to_text(gamma) + ")");
   return std::make_unique<Newmark>(p, solver, dt, beta, gamma, condense);
 }
 

@@ -73,12 +73,11 @@ class PaoliSchatzman final : public StepQPScheme {
 std::unique_ptr<TimeScheme> make_paoli_schatzman(const ConstrainedProblem& p, StepSolver& solver, double dt,
                                                  double restitution) {
   if (!(restitution >= 0.0 && restitution <= 1.0))
-    throw InputError("time.restitution: the restitution coefficient e must lie in [0, 1] (got " +
+    throw InputError("restitution", "the restitution coefficient e must lie in [0, 1] (got " +
                      std::to_string(restitution) + ")");
-  const std::string m = p.mass->name();
-  if (m != "consistent" && m != "lumped")
-    throw InputError("time.scheme: paoli_schatzman needs an invertible mass matrix in W^h (method.mass = consistent "
-                     "or lumped), not " + m);
+  if (!p.mass->velocity_is_rate() || !p.mass->is_invertible())
+    throw InputError("scheme", "paoli_schatzman needs an invertible mass matrix in W^h (the consistent or lumped "
+                               "mass), not " + p.mass->name());
   return std::make_unique<PaoliSchatzman>(p, solver, dt, restitution);
 }
 

@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/base/format.hpp"
 
 namespace cdyn {
 
 StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m,
                            bool condense)
     : p_(p), solver_(solver), dt_(dt), M_(p.mass->matrix()) {
-  if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("time.dt: must be positive (got " + std::to_string(dt) + ")");
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("dt", "must be positive and finite (got " + to_text(dt) + ")");
   const double k = m / (dt * dt);
   qp_.lower = p.lower;
   qp_.upper = p.upper;

@@ -21,7 +21,7 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
   if (name == "energy_conserving") return make_energy_conserving(problem, solver, dt, c);
   std::string known;
   for (const auto& n : time_scheme_names()) known += (known.empty() ? "" : ", ") + n;
-  throw InputError("time.scheme: unknown scheme '" + name + "' (available: " + known + ")");
+  throw InputError("scheme", "unknown scheme '" + name + "' (available: " + known + ")");
 }
 
 Eigen::VectorXd initial_velocity(const ConstrainedProblem& problem, const Eigen::VectorXd& Udot0) {

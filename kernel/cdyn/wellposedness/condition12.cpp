@@ -61,7 +61,7 @@ WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, int dens
 
 SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc, const std::vector<int>& vertices,
                                       std::optional<Point> normal) {
-  if (!W.has_vertex_dofs()) throw InputError("constraints: the displacement space must be continuous");
+  if (!W.has_vertex_dofs()) throw InputError("pair", "the displacement space must be continuous");
   if (W.components() > 1 && !normal)
     throw InputError("constraints: a vector-valued space needs the contact normal");
   std::vector<Eigen::Triplet<double>> t;
@@ -86,22 +86,13 @@ SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc,
   return G;
 }
 
-WellPosedness wellposedness_row(const Mesh& mesh, const std::string& spec, const WellPosednessSetup& setup,
-                                Element classical_W) {
-  const bool classical = is_classical_mass_model(spec);
-  Element We = classical_W;
-  if (!classical) {
-    const auto slash = spec.find('/');
-    if (slash == std::string::npos)
-      throw InputError("method.pair '" + spec + "': expected W/H, e.g. P1+/P0");
-    We = element_from_string(spec.substr(0, slash));
-  }
-  const FESpace W(mesh, We, setup.components);
+WellPosedness condition12_on(const Mesh& mesh, const MassSpec& spec, const WellPosednessSetup& setup) {
+  const FESpace W(mesh, spec.W, setup.components);
   const DirichletLift bc(W, setup.dirichlet_parts);
   const SparseMatrix G = vertex_constraint_matrix(W, bc, setup.constrained_vertices, setup.normal);
 
   SparseMatrix B;
-  if (classical) {
+  if (!spec.is_pair()) {
     std::vector<int> contact;
     for (int v : setup.constrained_vertices)
       for (int k = 0; k < W.components(); ++k)
@@ -109,13 +100,11 @@ WellPosedness wellposedness_row(const Mesh& mesh, const std::string& spec, const
     const auto model = make_mass_model(W, bc, spec, 1.0, contact);
     B = *model->matrix();  // Ker B = Ker M
   } else {
-    B = mixed_blocks(W, bc, element_from_string(spec.substr(spec.find('/') + 1)), 1.0).B;
+    B = mixed_blocks(W, bc, spec.H, 1.0).B;
   }
   WellPosedness r = condition12(B, G, setup.dense_limit);
-  r.pair = classical ? spec : to_string(We) + "/" + spec.substr(spec.find('/') + 1);
+  r.pair = spec.name();
   return r;
 }
-
-std::vector<std::string> seed_pairs() { return {"P1/P1", "P1/P0", "P1+/P0", "P1+/P1", "P2/P1"}; }
 
 }  // namespace cdyn

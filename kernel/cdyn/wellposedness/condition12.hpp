@@ -25,6 +25,7 @@
 #include "cdyn/fe/assembly.hpp"
 #include "cdyn/fe/dirichlet.hpp"
 #include "cdyn/mesh/mesh.hpp"
+#include "cdyn/mass/mass_spec.hpp"
 
 namespace cdyn {
 
@@ -68,7 +69,7 @@ WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, int dens
 SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc, const std::vector<int>& vertices,
                                       std::optional<Point> normal = std::nullopt);
 
-// One row of the `cdyn wellposed` table.
+// What condition (12) needs besides the mesh and the pair.
 struct WellPosednessSetup {
   std::vector<int> dirichlet_parts;       // indices into mesh.part_names
   std::vector<int> constrained_vertices;  // where the constraint acts (fixed ones skipped)
@@ -77,15 +78,11 @@ struct WellPosednessSetup {
   int dense_limit = kWellposednessDenseLimit;
 };
 
-// `spec` is a pair "P1+/P0" (W^h its first half) or a classical model "consistent",
-// "lumped", "redistributed" on W^h = `classical_W` (the redistributed model takes the
-// constrained vertices, all components, as its contact dofs).  Throws InputError when
-// the model cannot be built for this setup (e.g. redistributed with every free vertex
-// constrained) or the problem exceeds the dense limit.
-WellPosedness wellposedness_row(const Mesh& mesh, const std::string& spec, const WellPosednessSetup& setup,
-                                Element classical_W = Element::P1);
-
-// The pairs of the seed's experiments, in its order: P1/P1, P1/P0, P1+/P0, P1+/P1, P2/P1.
-std::vector<std::string> seed_pairs();
+// Condition (12) for the discretization `spec` on `mesh`: W^h = spec.W, B of the pair
+// (or, for a classical model, B = M: the redistributed model takes the constrained
+// vertices, all components, as its contact dofs) and G of the constrained vertices.
+// Throws InputError when the model cannot be built for this setup (e.g. redistributed
+// with every free vertex constrained) or the problem exceeds the dense limit.
+WellPosedness condition12_on(const Mesh& mesh, const MassSpec& spec, const WellPosednessSetup& setup);
 
 }  // namespace cdyn

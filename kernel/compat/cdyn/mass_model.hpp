@@ -4,3 +4,12 @@
 
 #include "cdyn/mass/mass_model.hpp"
 
+
+namespace cdyn {
+
+// The former name test of the classical models (now MassSpec::is_pair()).
+inline bool is_classical_mass_model(const std::string& spec) {
+  return spec == "consistent" || spec == "lumped" || spec == "redistributed";
+}
+
+}  // namespace cdyn

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   setup.dirichlet_parts = {0, 1, 2, 3};
   setup.constrained_vertices.resize(square.n_vertices());
   std::iota(setup.constrained_vertices.begin(), setup.constrained_vertices.end(), 0);
-  const cdyn::WellPosedness w = cdyn::wellposedness_row(square, "P1+/P0", setup);
+  const cdyn::WellPosedness w = cdyn::condition12_on(square, cdyn::MassSpec::parse("P1+/P0"), setup);
   std::printf("cdyn %s\n", cdyn::version);
   std::printf("P1+/P0 n=10: N_W %d N_H %d dimKerB %d N_g %d beta %.4f satisfied %s\n", w.n_W, w.n_H, w.dim_ker_B,
               w.n_g, w.beta, w.satisfied ? "yes" : "no");

@@ -1,0 +1,269 @@
+// scene_spec.cpp — every scene key read, defaulted and checked, in one place.
+#include "scene_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "cdyn/base/error.hpp"
+#include "expression.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+Expression expression(const Scene& s, const std::string& key, const std::string& fallback) {
+  const std::string text = s.string(key, fallback);
+  return {key, text, parse_expression(text, key), depends_on_time(text)};
+}
+
+// A datum with one expression per component: a string (one component) or a list.
+std::vector<Expression> expressions(const Scene& s, const std::string& key, int components) {
+  if (components == 1) return {expression(s, key, "0")};
+  const std::vector<std::string> text = s.strings(key, {"0", "0"});
+  if (static_cast<int>(text.size()) != components)
+    throw InputError(key + ": expected two expressions [x component, y component] (got " + std::to_string(text.size()) +
+                     ")");
+  std::vector<Expression> out;
+  for (const std::string& t : text) out.push_back({key, t, parse_expression(t, key), depends_on_time(t)});
+  return out;
+}
+
+Point point(const Scene& s, const std::string& key, Point fallback) {
+  if (!s.has(key)) return fallback;
+  const std::vector<double> c = s.numbers(key);
+  if (c.size() != 2 || !std::isfinite(c[0]) || !std::isfinite(c[1]))
+    throw InputError(key + ": expected two finite numbers [x, y]");
+  return {c[0], c[1]};
+}
+
+// Keys that belong to other models: naming one is a mistake (it would be ignored).
+void reject_keys(const Scene& s, const std::vector<std::string>& keys, const std::string& model) {
+  for (const std::string& key : keys)
+    if (s.has(key)) throw InputError(key + ": not a key of physics.model = " + model);
+}
+const std::vector<std::string> kElasticityOnly = {"physics.nu",      "physics.lambda",   "physics.mu",
+                                                  "physics.gravity", "dirichlet.components", "neumann.parts",
+                                                  "neumann.traction", "obstacle.point", "obstacle.normal"};
+const std::vector<std::string> kScalarOnly = {"physics.tension", "physics.m", "physics.k", "obstacle.g"};
+// The oscillator is m, k, F(t) and g: the continuum's keys would be ignored.
+const std::vector<std::string> kNotOscillator = {"physics.rho", "physics.E", "physics.tension", "dirichlet.parts",
+                                                 "dirichlet.value", "obstacle.where"};
+
+void read_mesh_keys(const Scene& s, SceneSpec& spec) {
+  SceneSpec::Mesh& m = spec.mesh;
+  if (spec.physics.model == "oscillator") {
+    if (!s.keys("mesh").empty()) throw InputError("mesh: the oscillator has no mesh (remove the [mesh] table)");
+    m.kind = "none";
+    return;
+  }
+  m.kind = s.string("mesh.kind");
+  if (m.kind != "interval" && m.kind != "unit_square" && m.kind != "gmsh")
+    throw InputError("mesh.kind: unknown kind '" + m.kind + "' (interval, unit_square, gmsh)");
+  if (spec.physics.model == "elasticity" && m.kind == "interval")
+    throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
+  if (m.kind == "gmsh") {
+    // A relative mesh.file is relative to the scene file's directory (as an #include
+    // is to its file), so a scene runs from anywhere; for the embedded scene, to the
+    // current directory.  (`--set mesh.file=` values arrive absolute: cmd_run.cpp.)
+    m.file = s.string("mesh.file");
+    const auto slash = spec.source.find_last_of('/');
+    if (!m.file.empty() && m.file.front() != '/' && slash != std::string::npos)
+      m.file = spec.source.substr(0, slash + 1) + m.file;
+    return;
+  }
+  m.n = s.integer("mesh.n");
+  if (m.kind == "interval") m.length = s.number("mesh.length", 1.0);
+}
+
+// method.pair "W/H" or method.mass "consistent|lumped|redistributed" (on P1).
+void read_method(const Scene& s, SceneSpec& spec) {
+  if (s.has("method.pair") && s.has("method.mass")) throw InputError("method: give either pair or mass, not both");
+  SceneSpec::Method& m = spec.method;
+  if (s.has("method.mass")) {
+    m.key = "method.mass";
+    const std::string name = s.string("method.mass");
+    m.mass = MassSpec::parse(name, Element::P1);
+    if (m.mass.is_pair())
+      throw InputError("method.mass: unknown mass model '" + name + "' (consistent, lumped, redistributed)");
+    return;
+  }
+  m.key = "method.pair";
+  const std::string pair = s.string("method.pair", "P1+/P0");
+  if (pair.find('/') == std::string::npos)
+    throw InputError("method.pair: expected W/H, e.g. P1+/P0 (got '" + pair + "')");
+  try {
+    m.mass = MassSpec::parse(pair);
+  } catch (const InputError& e) {
+    throw InputError("method.pair: " + e.message());
+  }
+  if (m.mass.H == Element::P2) throw InputError("method.pair: P2 velocities are not among the pairs (P0 or P1)");
+}
+
+// The Lamé parameters from exactly one of the pairs (E, nu) and (lambda, mu).
+Lame material(const Scene& s) {
+  const bool young = s.has("physics.E") || s.has("physics.nu");
+  const bool lame = s.has("physics.lambda") || s.has("physics.mu");
+  if (young && lame) throw InputError("physics.lambda: give E and nu, or lambda and mu, not both");
+  if (!young && !lame) throw InputError("physics.E: elasticity needs E and nu, or lambda and mu");
+  if (young) {
+    if (!s.has("physics.E")) throw InputError("physics.E: missing (physics.nu is given)");
+    if (!s.has("physics.nu")) throw InputError("physics.nu: missing (physics.E is given)");
+    const double E = s.number("physics.E"), nu = s.number("physics.nu");
+    try {
+      return lame_parameters(E, nu);
+    } catch (const InputError& e) {
+      throw InputError("physics." + e.parameter() + ": " + e.message());
+    }
+  }
+  if (!s.has("physics.lambda")) throw InputError("physics.lambda: missing (physics.mu is given)");
+  if (!s.has("physics.mu")) throw InputError("physics.mu: missing (physics.lambda is given)");
+  return {s.number("physics.lambda"), s.number("physics.mu")};  // checked by build_elastic_contact
+}
+
+void read_physics(const Scene& s, SceneSpec& spec) {
+  SceneSpec::Physics& p = spec.physics;
+  p.rho = s.number("physics.rho", 1.0);
+  if (p.model == "oscillator") {
+    if (s.has("method.pair") || (s.has("method.mass") && s.string("method.mass") != "lumped"))
+      throw InputError("method: the oscillator has one dof and the mass m (no pair or mass model to choose)");
+    p.m = s.number("physics.m", 1.0);
+    p.k = s.number("physics.k", 1.0);
+    p.f = {expression(s, "physics.f", "0")};
+    return;
+  }
+  if (p.model == "elasticity") {
+    p.lame = material(s);
+    p.f = expressions(s, "physics.f", 2);
+    p.gravity = point(s, "physics.gravity", {0.0, 0.0});
+    return;
+  }
+  p.stiffness = p.model == "bar" ? s.number("physics.E", 1.0) : s.number("physics.tension", 1.0);
+  p.f = {expression(s, "physics.f", "0")};
+}
+
+// dirichlet.components: ["x"], ["y"] or both (default).
+std::vector<int> components(const Scene& s) {
+  std::vector<int> out;
+  for (const std::string& c : s.strings("dirichlet.components")) {
+    if (c != "x" && c != "y") throw InputError("dirichlet.components: expected \"x\" or \"y\" (got '" + c + "')");
+    out.push_back(c == "x" ? 0 : 1);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (!out.empty() && !s.has("dirichlet.parts")) throw InputError("dirichlet.components: given without dirichlet.parts");
+  return out;
+}
+
+void read_boundary(const Scene& s, SceneSpec& spec) {
+  const int nc = spec.components();
+  spec.dirichlet.parts = s.strings("dirichlet.parts");
+  spec.dirichlet.value = expressions(s, "dirichlet.value", nc);
+  if (nc == 2) {
+    spec.dirichlet.components = components(s);
+    spec.neumann.parts = s.strings("neumann.parts");
+    if (s.has("neumann.traction") && spec.neumann.parts.empty())
+      throw InputError("neumann.traction: given without neumann.parts");
+    spec.neumann.traction = expressions(s, "neumann.traction", 2);
+  }
+  SceneSpec::Obstacle& o = spec.obstacle;
+  o.enabled = s.boolean("obstacle.enabled", true);
+  o.where = s.strings("obstacle.where", {"vertices"});
+  if (nc == 2) {
+    if (o.where == std::vector<std::string>{"vertices"})
+      throw InputError("obstacle.where: elasticity needs the contact boundary Γ_C (a part name)");
+    o.point = point(s, "obstacle.point", {0.0, 0.0});
+    o.normal = point(s, "obstacle.normal", {0.0, 1.0});
+  } else {
+    o.g = expression(s, "obstacle.g", "0");
+  }
+  spec.initial.u = expressions(s, "initial.u", nc);
+  spec.initial.v = expressions(s, "initial.v", nc);
+}
+
+void read_time_and_solver(const Scene& s, SceneSpec& spec) {
+  SceneSpec::Time& t = spec.time;
+  t.dt = s.number("time.dt");
+  t.T = s.number("time.T");
+  if (!(t.dt > 0.0) || !std::isfinite(t.dt)) throw InputError("time.dt: must be positive");
+  if (!(t.T > 0.0) || !std::isfinite(t.T)) throw InputError("time.T: must be positive");
+  if (t.T < t.dt)
+    throw InputError("time.T: shorter than one step (T = " + std::to_string(t.T) + " < dt = " + std::to_string(t.dt) + ")");
+  const double steps = std::ceil(t.T / t.dt - 1e-9);  // T/dt may overflow int (fuzz regression)
+  if (!(steps <= std::numeric_limits<int>::max()))
+    throw InputError("time.T: T/dt = " + std::to_string(steps) +
+                     " steps is more than a run can take (at most 2147483647)");
+  t.n_steps = static_cast<int>(steps);
+  t.scheme = s.string("time.scheme", "midpoint");
+  t.parameters.beta = s.number("time.beta", t.parameters.beta);
+  t.parameters.gamma = s.number("time.gamma", t.parameters.gamma);
+  t.parameters.restitution = s.number("time.restitution", t.parameters.restitution);
+  t.parameters.condense = s.boolean("solver.condense", t.parameters.condense);
+
+  SceneSpec::Solver& v = spec.solver;
+  v.name = s.string("solver.name", "pdas");
+  v.options.tol = s.number("solver.tol", 1e-10);
+  if (!(v.options.tol > 0.0)) throw InputError("solver.tol: must be positive");
+  v.options.max_iterations = s.integer("solver.max_iterations", 0);
+  v.options.pdas_cg_iterations = s.integer("solver.cg_iterations", v.options.pdas_cg_iterations);
+  if (v.options.pdas_cg_iterations < 0) throw InputError("solver.cg_iterations: must be 0 (no CG) or more");
+}
+
+void read_output(const Scene& s, SceneSpec& spec) {
+  SceneSpec::Output& o = spec.output;
+  o.every = s.integer("output.every", 1);
+  if (o.every < 1) throw InputError("output.every: must be at least 1");
+  o.contact_every = s.integer("output.contact_every", 1);
+  if (o.contact_every < 1) throw InputError("output.contact_every: must be at least 1");
+  o.fields = s.boolean("output.fields", true);
+  o.plots = s.boolean("output.plots", true);
+  for (const std::string& name : s.keys("output.probes"))
+    o.probes.emplace_back(name, s.numbers("output.probes." + name));
+  spec.exact_solution = s.string("exact.solution", "");
+}
+
+}  // namespace
+
+SceneSpec read_scene(const Scene& s) {
+  SceneSpec spec;
+  spec.name = s.name();
+  spec.source = s.source();
+  SceneSpec::Physics& p = spec.physics;
+  p.model = s.string("physics.model");
+  if (p.model != "membrane" && p.model != "bar" && p.model != "oscillator" && p.model != "elasticity")
+    throw InputError("physics.model: unknown model '" + p.model + "' (oscillator, bar, membrane, elasticity)");
+  reject_keys(s, p.model == "elasticity" ? kScalarOnly : kElasticityOnly, p.model);
+  if (p.model == "oscillator") reject_keys(s, kNotOscillator, p.model);
+  if (p.model != "elasticity" && s.has("output.contact_every"))
+    throw InputError("output.contact_every: only elasticity runs write contact.csv");
+  read_mesh_keys(s, spec);
+  read_physics(s, spec);
+  if (p.model == "oscillator") {
+    spec.method.mass = {MassSpec::Model::Lumped, Element::P1, Element::P0};
+    spec.method.key = "method.mass";
+  } else {
+    read_method(s, spec);
+  }
+  read_boundary(s, spec);
+  read_time_and_solver(s, spec);
+  read_output(s, spec);
+  return spec;
+}
+
+std::string scene_key(const std::string& parameter, const SceneSpec& spec) {
+  static const std::map<std::string, std::string> fixed = {
+      {"n", "mesh.n"},           {"length", "mesh.length"},         {"rho", "physics.rho"},
+      {"E", "physics.E"},        {"nu", "physics.nu"},              {"lambda", "physics.lambda"},
+      {"mu", "physics.mu"},      {"m", "physics.m"},                {"k", "physics.k"},
+      {"normal", "obstacle.normal"}, {"contact", "obstacle.where"}, {"dt", "time.dt"},
+      {"beta", "time.beta"},     {"gamma", "time.gamma"},           {"restitution", "time.restitution"},
+      {"scheme", "time.scheme"}, {"tol", "solver.tol"},             {"max_iterations", "solver.max_iterations"},
+      {"solver", "solver.name"}, {"mesh", "mesh.kind"}};
+  if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
+  if (parameter == "kappa") return spec.physics.model == "bar" ? "physics.E" : "physics.tension";
+  if (parameter == "pair" || parameter == "mass") return spec.method.key;
+  return "";
+}
+
+}  // namespace cdyn::app

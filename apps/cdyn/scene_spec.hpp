@@ -1,0 +1,123 @@
+// scene_spec.hpp — a scene read and validated once into a typed description.
+//
+// Every key of docs/scenes.md is read here, in one place, with its default, its type
+// and the checks that need no mesh (ranges, keys that belong to another model, keys
+// that conflict); what needs the mesh (part names, probe points, the bar's 1D mesh) is
+// checked when the simulation is built from this description (simulation.hpp).  An
+// error names the key: "time.dt: must be positive".
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cdyn/base/error.hpp"
+#include "cdyn/fe/field.hpp"
+#include "cdyn/mass/mass_spec.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/qp/bound_qp.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
+#include "scene.hpp"
+
+namespace cdyn::app {
+
+// A datum given as an expression: the key it came from, its text, the field.
+struct Expression {
+  std::string key, text;
+  Field field;
+  bool depends_on_time = false;
+};
+
+struct SceneSpec {
+  std::string name, source;  // the scene's name; its file ("" or "default" for the embedded one)
+
+  struct Mesh {
+    std::string kind;          // interval | unit_square | gmsh | none (the oscillator)
+    int n = 0;                 // cells per side (interval, unit_square)
+    double length = 1.0;       // interval
+    std::string file;          // gmsh: .geo or .msh, resolved against the scene's directory
+  } mesh;
+
+  struct Physics {
+    std::string model;           // oscillator | bar | membrane | elasticity
+    double rho = 1.0;            // density
+    double stiffness = 1.0;      // bar: E; membrane: the tension
+    Lame lame;                   // elasticity
+    double m = 1.0, k = 1.0;     // oscillator
+    std::vector<Expression> f;   // the load: one expression (scalar models) or two
+    Point gravity;               // elasticity: an acceleration, added as ρ g
+  } physics;
+
+  struct Method {
+    MassSpec mass;               // the pair or classical mass (W = P1 for the classical ones)
+    std::string key;             // the key it came from: method.pair or method.mass
+  } method;
+
+  struct Dirichlet {
+    std::vector<std::string> parts;   // part names, or "all"
+    std::vector<int> components;      // elasticity: the fixed components (empty: both)
+    std::vector<Expression> value;
+  } dirichlet;
+
+  struct Neumann {
+    std::vector<std::string> parts;
+    std::vector<Expression> traction;
+  } neumann;
+
+  struct Obstacle {
+    bool enabled = true;
+    std::vector<std::string> where;   // "vertices" or part names (Γ_C)
+    Expression g;                      // scalar models: the lower bound u ≥ g
+    Point point, normal{0.0, 1.0};     // elasticity: the rigid plane
+  } obstacle;
+
+  struct Initial {
+    std::vector<Expression> u, v;     // one per component
+  } initial;
+
+  struct Time {
+    std::string scheme = "midpoint";
+    double dt = 0.0, T = 0.0;
+    int n_steps = 0;
+    SchemeParameters parameters;
+  } time;
+
+  struct Solver {
+    std::string name = "pdas";
+    QPOptions options;
+  } solver;
+
+  struct Output {
+    int every = 1, contact_every = 1;
+    bool fields = true, plots = true;
+    std::vector<std::pair<std::string, std::vector<double>>> probes;  // name, coordinates
+  } output;
+
+  std::string exact_solution;  // exact.solution, or empty
+
+  int components() const { return physics.model == "elasticity" ? 2 : 1; }
+};
+
+// Reads and checks every key of the scene.  InputError naming the key.
+SceneSpec read_scene(const Scene& scene);
+
+// The scene key that a kernel parameter name comes from ("dt" → "time.dt", "rho" →
+// "physics.rho", "pair" → method.pair or method.mass, ...), for the kernel's
+// InputError::parameter(); empty when the parameter is not a scene key.
+std::string scene_key(const std::string& parameter, const SceneSpec& spec);
+
+// Runs f; a kernel InputError naming a parameter is given the scene key instead
+// ("dt: must be positive" → "time.dt: must be positive").
+template <class F>
+auto with_scene_keys(const SceneSpec& spec, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    const std::string key = e.parameter().empty() ? "" : scene_key(e.parameter(), spec);
+    if (key.empty()) throw;
+    throw InputError(key + ": " + e.message());
+  }
+}
+
+}  // namespace cdyn::app
