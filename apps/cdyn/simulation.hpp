@@ -2,7 +2,7 @@
 // constrained problem, the initial state, the step solver and the scheme.
 //
 // This is the one place that reads scene keys into the kernel's plain structures
-// (DESIGN.md §4 lists the keys); the kernel itself knows no scene file.
+// (docs/scenes.md lists the keys); the kernel itself knows no scene file.
 #pragma once
 
 #include <memory>
