@@ -1,4 +1,4 @@
-// bench_contact_step.cpp — the cost of contact in a time step (issue 9, first target):
+// bench_contact_step.cpp — the cost of contact in a time step (docs/performance.md (a)):
 // the seed's membrane (P1+/P0, midpoint with the constraint on the half step,
 // dt = 0.001, f = −0.6, u = 0.02 on the boundary and at t = 0, u ≥ 0 at the vertices:
 // data/scenes/membrane.toml) at n = 160, over the 100 steps 211–310, which contain the
@@ -24,7 +24,7 @@
 // fact_ms, upd_ms, solve_ms, cg_ms: the solver's milliseconds per step in factorizations,
 // row updates, forward/back solves and CG (PDASSolver::Counters): where the time goes.
 //
-// After the table it prints the ratios contact/linear (target ≤ 1.5, issue 9).
+// After the table it prints the ratios contact/linear (target ≤ 1.5, docs/performance.md (a)).
 // Run (Release build):
 //   build-perf/bench/bench_contact_step --benchmark_counters_tabular=true
 // CDYN_BENCH_N=80 runs a smaller mesh (the window is the same: the impact time does not

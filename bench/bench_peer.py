@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""bench_peer.py — cdyn against the peer a user would pick instead (issue 9, second target).
+"""bench_peer.py — cdyn against the peer a user would pick instead (docs/performance.md (b)).
 
 The seed's dynamic membrane (data/scenes/membrane.toml: f = −0.6, u = 0.02 on the
 boundary and at t = 0, u ≥ 0 at the vertices, dt = 0.001) with P1/P1 and backward Euler,

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""bench_scaling.py — wall time per step against the number of dofs (issue 9, scaling target).
+"""bench_scaling.py — wall time per step against the number of dofs (docs/performance.md (c)).
 
 The seed's membrane (data/scenes/membrane.toml: P1+/P0, midpoint, dt = 0.001) for
 n = 40 … 640, each a whole `cdyn run` under /usr/bin/time -v: the time per step is the

@@ -1,4 +1,4 @@
-// bench_step_solvers.cpp — the solver table of issue 9: pdas, pgs, ipopt and nlopt on the
+// bench_step_solvers.cpp — the solver table of docs/performance.md (d): pdas, pgs, ipopt and nlopt on the
 // SAME time steps.  The seed's membrane (data/scenes/membrane.toml: P1+/P0, midpoint,
 // dt = 0.001, bubbles condensed) is run with pdas through steps 1–300 and the step QPs
 // of steps 241–300 (the impact at t ≈ 0.258 and the contact after it) are recorded: S_c

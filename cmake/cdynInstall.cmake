@@ -1,6 +1,6 @@
-# cdynInstall.cmake — `cmake --install` of the library (issue 11): the three public
-# libraries, their headers under include/cdyn/, and a CMake package so that an outside
-# project writes
+# cdynInstall.cmake — `cmake --install` of the library (README.md, "Using cdyn as a
+# library"): the three public libraries, their headers under include/cdyn/, and a CMake
+# package so that an outside project writes
 #     find_package(cdyn 0.1 REQUIRED)
 #     target_link_libraries(app PRIVATE cdyn::cdyn cdyn::meshing cdyn::io)
 # The command-line front end (cdyn_frontend) and the `cdyn` program are not part of the

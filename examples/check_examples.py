@@ -55,7 +55,7 @@ def cdyn_run(cdyn, out, scene=None, sets=()):
 # Where an example and `cdyn run` make the same kernel calls in the same order, the
 # numbers are equal to the last bit (measured); 1e-13 relative leaves room for the
 # compiler contracting a product differently in the two programs, and is 100 times
-# below the scheme's own round-off drift (DESIGN.md §1: 1e-11 over 800 steps).
+# below the scheme's own round-off drift (docs/schemes.md, midpoint: 1e-11 over 800 steps).
 SAME_CALLS = 1e-13
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""getfem_bar.py — the clamped bar impact (DESIGN.md §4, data/scenes/bar.toml) integrated
+"""getfem_bar.py — the clamped bar impact (docs/bar_impact.md §3, data/scenes/bar.toml) integrated
 with GetFEM's matrices and a step solved in closed form: an independent run to compare
 with `cdyn run data/scenes/bar.toml --set method.mass=consistent` (docs/verification.md).
 

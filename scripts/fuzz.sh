@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fuzz.sh — build the libFuzzer targets of fuzz/ with clang (ASan + UBSan, coverage of
-# the whole project) and run each for a bounded time (issue 10).
+# the whole project) and run each for a bounded time (docs/stability.md, "Fuzzing").
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
 #   SECONDS_PER_TARGET  default 60 (env FUZZ_SECONDS also works)

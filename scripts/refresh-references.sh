@@ -1,6 +1,6 @@
 #!/bin/sh
 # refresh-references.sh — regenerate every reference CSV in data/reference/ from the
-# independent programs in reference_scripts/ (DESIGN.md §6: each stored reference number
+# independent programs in reference_scripts/ (docs/verification.md: each stored reference number
 # comes with the exact command that produced it).  Run from the repository root:
 #     sh scripts/refresh-references.sh
 # One line per CSV.  FreeFEM 4.11 (Debian freefem++): its plugins live in

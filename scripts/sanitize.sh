@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # sanitize.sh — the unit suite under AddressSanitizer + UndefinedBehaviorSanitizer
-# (issue 10).  Configures a separate build directory with -DCDYN_SANITIZE=ON (the top
+# (docs/stability.md, "Sanitizers").  Configures a separate build directory with -DCDYN_SANITIZE=ON (the top
 # CMakeLists adds -fsanitize=address,undefined -fno-sanitize-recover=all: the first
 # finding aborts the test that hit it, so a green run means no finding), builds the
 # unit-test executables only, and runs `ctest -L unit`.

@@ -1,5 +1,5 @@
 // cmd_run.cpp — `cdyn run`: integrate a scene in time and write its results
-// (DESIGN.md §5, docs/outputs.md): history.csv (one row per step), summary.json,
+// (docs/outputs.md): history.csv (one row per step), summary.json,
 // scene.toml (the scene as run), fields.pvd + fields/*.vtu (output.fields),
 // contact.csv (elasticity: the contact force and pressure along Γ_C) and plots/*.png
 // (output.plots).

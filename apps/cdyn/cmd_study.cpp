@@ -1,4 +1,4 @@
-// cmd_study.cpp — `cdyn study`: speed against error (DESIGN.md §4–5).
+// cmd_study.cpp — `cdyn study`: speed against error (docs/outputs.md, "cdyn study").
 //
 // Runs a scene once per combination of the --vary values (their Cartesian product,
 // the last --vary changing fastest), each run a `cdyn run --quiet` into

@@ -1,4 +1,4 @@
-// main.cpp — the `cdyn` command line (DESIGN.md §4).
+// main.cpp — the `cdyn` command line (README.md, "Command line").
 //
 // Parses the subcommand with CLI11 and hands over to commands.hpp.  The exit status
 // contract: 0 success, 2 bad input (one line on stderr naming the key or file),

@@ -1,6 +1,6 @@
 // python_script.hpp — running an embedded python3-matplotlib script on a directory.
 //
-// The plots are optional (DESIGN.md §5: "when python3-matplotlib is present"), so
+// The plots are optional (docs/outputs.md: made when python3-matplotlib is present), so
 // nothing here is an error: a missing interpreter, a missing matplotlib or a failing
 // script each give one note line, and the run goes on.
 #pragma once

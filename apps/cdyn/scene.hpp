@@ -1,4 +1,4 @@
-// scene.hpp — a scene file (TOML, DESIGN.md §4) with its --set overrides.
+// scene.hpp — a scene file (TOML, docs/scenes.md) with its --set overrides.
 //
 // A scene is a TOML table whose every key must be known (a typo is an error, never
 // silently ignored).  --set key=value overrides any key by its dotted name; the value

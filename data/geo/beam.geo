@@ -3,7 +3,7 @@
 // The rectangle [-L/2, L/2] x [yb, yb + H], L = 100 mm, H = 2 mm, its lower side 0.5 mm
 // above the obstacle (the plane y = 0).  A structured mesh of nx cells along the beam
 // and ny across (each cell split into two triangles): ny = 1 is the thin structure of
-// issue 8, one cell thick, where every vertex lies on the top or the bottom side.
+// docs/elasticity.md, one cell thick, where every vertex lies on the top or the bottom side.
 //
 // Physical groups:
 //   curve "bottom"   the lower side: the contact zone

@@ -8,7 +8,7 @@ The disk (data/scenes/disk.toml, P1+/P0, midpoint, 1000 steps of 10 µs):
   - free flight before the impact: the momentum is ρ|Ω_h|(−v0 − g t) exactly (the
     constant is in W^h and in H^h; the midpoint rule integrates a constant force
     exactly) and J is conserved (no active constraint: the identity J^{n+1} = Jⁿ holds
-    to round-off, DESIGN.md §1), both to 1e-10 relative;
+    to round-off, docs/schemes.md, midpoint), both to 1e-10 relative;
   - contact.csv's forces add up to history.csv's contact_force, and the impact
     summary's "before" state is the last free-flight row;
   - the impulse I = Σ F dt of summary.json is the change in momentum plus gravity's
@@ -67,7 +67,7 @@ impact = s["impact"]
 free = [r for r in h if r["t"] < impact["t_first_contact"] - 1e-12]
 err_p = max(abs(r["py"] + m * (v0 + g * r["t"])) / (m * v0) for r in free)
 err_J = max(abs(r["E_total"] - h[0]["E_total"]) / h[0]["E_total"] for r in free)
-# Round-off only: 50 linear solves (no active constraint); DESIGN.md §1 measures about
+# Round-off only: 50 linear solves (no active constraint); docs/schemes.md (midpoint) gives about
 # 1e-11 over 800 steps for the membrane; here 4.7e-12 and 1.9e-12: asserted 1e-10.
 check(len(free) == 51 and err_p < 1e-10, f"disk free flight: momentum = -rho|Omega|(v0 + g t) to {err_p:.1e} over {len(free)} steps")
 check(err_J < 1e-10, f"disk free flight: J conserved to {err_J:.1e}")

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""check_interrupt.py — Ctrl-C stops `cdyn run` cleanly (issue 10, docs/outputs.md).
+"""check_interrupt.py — Ctrl-C stops `cdyn run` cleanly (docs/outputs.md, docs/stability.md).
 
 Usage: check_interrupt.py CDYN WORKDIR
 

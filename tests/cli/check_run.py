@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""check_run.py — `cdyn run` writes what DESIGN.md §5 promises, and the numbers agree.
+"""check_run.py — `cdyn run` writes what docs/outputs.md promises, and the numbers agree.
 
 Usage: check_run.py CDYN WORKDIR
 

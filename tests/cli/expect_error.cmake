@@ -1,8 +1,9 @@
 # expect_error.cmake — runs `${CDYN} ${ARGS}` and checks the bad-input contract
-# (DESIGN.md §4): exit status ${STATUS} (default 2) and exactly one line on stderr,
-# matching ${MATCH}.  With -DOUT=dir (a fresh directory the command was told to
-# write to), also that the failed command left there no summary.json (a finished
-# run) nor study.csv (a finished study): no output may look complete.
+# (README.md, "Command line"; docs/outputs.md): exit status ${STATUS} (default 2) and
+# exactly one line on stderr, matching ${MATCH}.  With -DOUT=dir (a fresh directory the
+# command was told to write to), also that the failed command left there no
+# summary.json (a finished run) nor study.csv (a finished study): no output may look
+# complete.
 #   cmake -DCDYN=... -DARGS="a;b" -DMATCH=regex [-DSTATUS=2] [-DWORKDIR=dir] [-DOUT=dir] -P expect_error.cmake
 if(NOT DEFINED STATUS)
   set(STATUS 2)

@@ -83,8 +83,9 @@ inline void print(const std::string& what, const RunRecord& r) {
 
 using testing::tight;
 
-// The 1D bar of DESIGN.md §4 on [0, L] with n cells: E = ρ = 1, Signorini contact at
-// x = 0 (u(0) ≥ g), clamped at x = L (clamped = true) or free at both ends.
+// The 1D bar of data/scenes/bar.toml (docs/bar_impact.md) on [0, L] with n cells:
+// E = ρ = 1, Signorini contact at x = 0 (u(0) ≥ g), clamped at x = L (clamped = true)
+// or free at both ends.
 inline ConstrainedProblem bar(const Mesh& mesh, const Method& m, bool clamped, double g) {
   ScalarWaveData d;
   d.mass = cdyn::MassSpec::parse(m.velocity, m.W);

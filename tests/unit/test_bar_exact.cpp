@@ -90,7 +90,7 @@ Case falling_case(const FallingBar& b, const std::string& name) {
   return k;
 }
 
-// The defaults (DESIGN.md §4 and data/scenes/falling_bar.toml) and a second set with
+// The defaults (data/scenes/bar.toml and data/scenes/falling_bar.toml) and a second set with
 // c = 2 and L ≠ 1, so that no formula can hide a missing c or L.
 std::vector<Case> all_cases() {
   ClampedBarImpact scaled_clamped;
@@ -291,7 +291,7 @@ Errors run_bar(const Case& k, const Method& m, const std::string& scheme_name, i
   const Mesh mesh = interval_mesh(n, k.L);
   const ConstrainedProblem p = bar_problem(mesh, k, m);
   QPOptions tight;
-  tight.tol = 1e-13;  // DESIGN.md §1: an inexact contact dof would be carried forward by midpoint
+  tight.tol = 1e-13;  // docs/schemes.md, midpoint: an inexact contact dof is carried forward
   auto solver = make_step_solver("pdas", tight);
   auto scheme = make_time_scheme(scheme_name, p, *solver, dt);
 
@@ -449,7 +449,7 @@ TEST(BarConvergence, BoxSchemeIsExactAtCourantOne) {
   }
 }
 
-// The reference without contact (study only): the clamped bar of DESIGN.md §4 with the
+// The reference without contact (study only): the clamped bar of docs/bar_impact.md §3 with the
 // obstacle removed.  Its end x = 0 is free for all t, so u is d'Alembert's solution with
 // the initial data extended evenly about x = 0 (free end) and oddly about x = L (clamped):
 // u = ½ [U(x − ct) + U(x + ct)], U the triangle wave of period 4L equal to δ(1 − |x|/L)

@@ -5,7 +5,7 @@
 // u = sin(2x) + x on [0, 1.5] in 1D.
 // Theory (Ciarlet): ‖u − u_h‖_L2 = O(h^{k+1}), |u − u_h|_H1 = O(h^k) for P_k; P1+ has the
 // rates of P1.  The rate observed between the two finest meshes is asserted within
-// ±0.15 of the theoretical one (the tolerance; pre-asymptotic effects at these
+// ±0.15 of the theoretical one (docs/verification.md; pre-asymptotic effects at these
 // sizes are below 0.05 — see the printed rates).
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 //  (iii) no penetration beyond the QP tolerance with backward Euler, checked both on the
 //        bounds and on the geometry (a + u(a) − p)·n ≥ 0;
 //  (iv)  energy identities with the rotated unknowns: midpoint conserves J without
-//        contact and J^{n+1} − Jⁿ = (U^{n+1} − Uⁿ)ᵀ Gᵀλ with it (DESIGN.md §1);
+//        contact and J^{n+1} − Jⁿ = (U^{n+1} − Uⁿ)ᵀ Gᵀλ with it (docs/schemes.md, midpoint);
 //  (v)   condition (12) for P1+/P0 with the normal constraints on Γ_C, in Cartesian and
 //        in rotated unknowns (the same β: R is orthogonal);
 // and: a free block resting on the inclined plane carries its weight along +n (the sign
@@ -376,7 +376,7 @@ TEST(ElasticContact, BackwardEulerDoesNotPenetrate) {
 TEST(ElasticContact, MidpointEnergyIdentities) {
   const Mesh mesh = block(4, kTheta);
   for (const Method& m : kPairs) {
-    // No contact: J conserved to round-off (DESIGN.md §1: ~1e-13 over 80 steps,
+    // No contact: J conserved to round-off (docs/schemes.md, midpoint: ~1e-13 over 80 steps,
     // 1e-11 over 800; 400 steps here), relative to the size of its terms.
     {
       const ConstrainedProblem p = build_elastic_contact(mesh, hanging_block(mesh, kTheta, m, false));

@@ -12,7 +12,7 @@
 // Tolerances: everything is an exact identity evaluated in floating point on matrices
 // of at most a few hundred rows, with condition numbers of mass matrices (≤ 1e3);
 // the worst round-off measured is printed by each test and is ≤ 3e-15 relative;
-// the tolerances (1e-13 for identities, 1e-12 for the moments as the issue asks, 1e-11
+// the tolerances (1e-13 for identities, 1e-12 for the moments, docs/semi_discretization.md §4, 1e-11
 // for the energy, which goes through two dense eigen-decompositions) leave ~10–100×.
 #include <gtest/gtest.h>
 

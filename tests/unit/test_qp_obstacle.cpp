@@ -2,12 +2,13 @@
 // against FreeFEM + ff-Ipopt.
 //
 //   min ½ ∫|∇u|² − ∫ f u,  P1 on the unit square (n × n cells, FreeFEM's square(n,n)),
-//   f = −0.6, u = 0.02 on the boundary, u ≥ 0 at the vertices   (DESIGN.md §1, seed eq. 16)
+//   f = −0.6, u = 0.02 on the boundary, u ≥ 0 at the vertices   (seed eq. 16, G = −I)
 //
 // The reference numbers (energy ½UᵀAU − LᵀU of the full field, min, max and sum of U,
 // the vertex values) are stored in data/reference/static_obstacle_n{10,20}.csv, produced
 // by reference_scripts/static_obstacle.edp (command in scripts/refresh-references.sh).
-// Required agreement: 1e-6 relative (issue 4); the measured agreement is printed.
+// Required agreement: 1e-6 relative (docs/verification.md, FreeFEM); the measured
+// agreement is printed.
 #include <gtest/gtest.h>
 
 #include <cmath>

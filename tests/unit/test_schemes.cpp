@@ -1,9 +1,10 @@
 // test_schemes.cpp — energy identities of the implicit schemes (docs/schemes.md).
 //
 //  - midpoint, no constraint: J^{n+1} = Jⁿ exactly, so |J − J0|/J0 stays at round-off.
-//    The bound 1e-12 over 1000 steps is issue 5's; it sits above the round-off growth
+//    The bound 1e-12 over 1000 steps sits above the round-off growth
 //    measured here (1e-13 … 5e-13 for the seven models on the 4 × 4 mesh) and within
-//    DESIGN.md's independent measurement (≈1e-13 over 80 steps, 1e-11 over 800).
+//    the independent measurement in docs/schemes.md, midpoint (≈1e-13 over 80 steps,
+//    1e-11 over 800).
 //  - midpoint with contact: J^{n+1} − Jⁿ = (U^{n+1} − Uⁿ)ᵀ Gᵀλ, the work of the
 //    contact force, to round-off of the QP solution (tol 1e-13 relative).
 //  - backward Euler, with or without contact: J never increases (up to round-off).

@@ -2,7 +2,7 @@
 // (docs/schemes.md), on the seed's oscillator and membrane.
 //
 //  - Newmark β = ¼, γ = ½ conserves J without contact (the trapezoidal rule), to the
-//    same round-off bound as midpoint (1e-11 over 1000 steps, DESIGN.md's measurement);
+//    same round-off bound as midpoint (1e-11 over 1000 steps; docs/schemes.md, midpoint);
 //    its error on the oscillator is O(dt²), and O(dt) for γ > ½ (rates ±0.1: the
 //    leading error term dominates at these dt, measured rates are 2.00 and 1.00).
 //  - energy_conserving conserves E^{n+½} exactly, contact or not: after its start step

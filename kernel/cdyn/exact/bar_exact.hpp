@@ -20,14 +20,15 @@
 
 namespace cdyn {
 
-// (a) The clamped bar of DESIGN.md §4 (Doyen–Ern–Piperno's 1D test up to notation):
+// (a) The clamped bar of data/scenes/bar.toml (Doyen–Ern–Piperno's 1D test up to
+// notation; docs/bar_impact.md §3):
 // u(L,t) = 0, obstacle g = 0 at x = 0, u(x,0) = δ (1 − x/L), u_t(x,0) = 0.
 // The compressed bar is released at t = 0, its end reaches the obstacle at t = L/c,
 // stays in contact with the constant force R = E δ/L until t = 2L/c, then leaves; at
 // t = 3L/c it is back in its initial state: the solution is periodic, of period 3L/c.
 struct ClampedBarImpact {
   double E = 1.0, rho = 1.0, L = 1.0;
-  double delta = 0.5;  // the initial displacement of the contact end (DESIGN.md §4: ½)
+  double delta = 0.5;  // the initial displacement of the contact end (data/scenes/bar.toml: ½)
 
   double wave_speed() const;                              // c = √(E/ρ)
   double period() const { return 3.0 * L / wave_speed(); }

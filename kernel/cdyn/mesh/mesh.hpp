@@ -80,7 +80,7 @@ struct Mesh {
   void check(const std::string& source) const;
 };
 
-// Built-in structured meshes (the DESIGN.md `mesh.kind` values).
+// Built-in structured meshes (the `mesh.kind` values of docs/scenes.md).
 
 // [0, length] split into n equal intervals; boundary parts "left" (x = 0) and
 // "right" (x = length).

@@ -19,7 +19,7 @@
 //   - its kept neighbours are pairwise coupled in S (a clique), so S_c has S_vv's
 //     pattern: no fill, and one CHOLMOD analysis of S_c is as cheap as that of S_vv.
 // Candidates are taken in order of increasing degree (fewest neighbours first), greedily.
-// For P1+/P0 (DESIGN.md §1, seed eq. 10 with H^h = P0) this picks exactly the bubbles:
+// For P1+/P0 (seed eqs. 10–11 with H^h = P0) this picks exactly the bubbles:
 // a bubble λ1λ2λ3 lives in one cell, is never constrained, couples only with the
 // vertices of its cell (A_vb = 0 already, M_vb = B_Kv B_Kb / |K| through C = diag|K|),
 // and those vertices are coupled to each other; an interior P1 vertex is not taken,

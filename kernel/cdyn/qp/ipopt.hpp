@@ -9,8 +9,9 @@
 // equal to ½ UᵀSU − rᵀU on the constraint set (Z = C⁻¹BU); Hessian blockdiag(A, cC),
 // Jacobian [−B, C], all sparse, nothing dense.
 //
-// Options (DESIGN.md §1, "Accuracy of each step solve"): bound_relax_factor = 0 so that
-// the bounds hold exactly (Ipopt's default relaxes them by 1e-8 and biases the energy),
+// Options (docs/qp.md §3.3; why the step solve must be accurate: docs/schemes.md,
+// midpoint): bound_relax_factor = 0 so that the bounds hold exactly (Ipopt's default
+// relaxes them by 1e-8 and biases the energy),
 // tol = 1e-3 × QPOptions::tol, mu_min = 1e-10 × QPOptions::tol (the default floor 1e-11
 // stops μ too early), adaptive μ, MUMPS, no output (print_level 0, sb = yes, no options
 // file read), Hessian and Jacobian declared constant.

@@ -3,7 +3,7 @@
 //   Bᵀ (V^{n+1} − Vⁿ)/dt + A U^{n+1} = L^{n+1} + Gᵀλ,   C V^{n+1} = B (U^{n+1} − Uⁿ)/dt.
 //
 // Eliminating V^{n+1} with M = Bᵀ C⁻¹ B and c = 1/dt gives the QP for X = U^{n+1}
-//   S = M c² + A,   r = M Uⁿ c² + Bᵀ Vⁿ c + L^{n+1}     (DESIGN.md §1; docs/schemes.md),
+//   S = M c² + A,   r = M Uⁿ c² + Bᵀ Vⁿ c + L^{n+1}     (seed eqs. 10–11; docs/schemes.md),
 // then V^{n+1} = C⁻¹ B (U^{n+1} − Uⁿ) c.  J never increases (numerical dissipation).
 #include "cdyn/schemes/step_qp_scheme.hpp"
 

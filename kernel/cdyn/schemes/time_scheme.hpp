@@ -1,6 +1,6 @@
 // time_scheme.hpp — time integration of the semi-discrete constrained problem.
 //
-// Every implicit scheme of DESIGN.md §1 advances (U, V) by one QP
+// Every implicit scheme (docs/schemes.md; a time-discrete seed eq. 16) advances (U, V) by one QP
 //     min ½ XᵀSX − rᵀX  over  lower ≤ X ≤ upper,
 // followed by an explicit update.  S is fixed for a run (dt is), so the QP object and
 // the step solver's factorizations are reused from step to step; the previous step's
