@@ -10,9 +10,9 @@
 //                                   same S, no bounds, so every step is one forward/back
 //                                   solve with the kept factor (plus the right-hand side
 //                                   and the update, as in the contact step)
-// condense = 1: the bubbles eliminated (implicit_step.hpp, condensation.hpp), 0: the full
+// condense = 1: the bubbles eliminated (schemes/step_qp_scheme.hpp, qp/condensation.hpp), 0: the full
 // 76 481-unknown QP; cg = QPOptions::pdas_cg_iterations (0: active-set changes only by
-// CHOLMOD row updates or refactorization, qp_pdas.hpp).  Each iteration builds a fresh
+// CHOLMOD row updates or refactorization, qp/pdas/pdas.hpp).  Each iteration builds a fresh
 // scheme and solver, runs the 210 steps before the window untimed, and times the window
 // (manual time: seconds per step); 5 repetitions of each case, which scripts/bench.sh
 // interleaves at random (--benchmark_enable_random_interleaving=true) so that the linear

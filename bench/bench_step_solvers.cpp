@@ -4,7 +4,7 @@
 // of steps 241–300 (the impact at t ≈ 0.258 and the contact after it) are recorded: S_c
 // (fixed), the bounds, and each step's r.  Each solver then solves that sequence, each QP
 // warm-started from its own previous result (as in a time loop), at the scene's
-// tolerance kkt_residual ≤ 1e-12 (qp.hpp: the same measure for every solver).
+// tolerance kkt_residual ≤ 1e-12 (qp/bound_qp.hpp: the same measure for every solver).
 //
 // Counters: ms/step (the time column, manual), iters (mean per step: pdas linear solves,
 // pgs sweeps, ipopt interior-point iterations, nlopt evaluations), kkt_max (largest

@@ -15,8 +15,8 @@
 //   build-X/examples/ex1_condition12            (about a second)
 //   CTest: ctest -R example_1 (compares every β with `cdyn wellposed --json`).
 //
-// Files to read next to it: kernel/cdyn/fe_space.hpp, element.hpp, dirichlet.hpp,
-// mass_model.hpp (mixed_blocks), wellposedness.hpp, docs/semi_discretization.md.
+// Files to read next to it: kernel/cdyn/fe_space.hpp, fe/element.hpp, fe/dirichlet.hpp,
+// mass/mass_model.hpp (mixed_blocks), wellposedness/condition12.hpp, docs/semi_discretization.md.
 #include <cdyn/fe/dirichlet.hpp>
 #include <cdyn/fe/fe_space.hpp>
 #include <cdyn/mass/mass_model.hpp>
@@ -46,7 +46,7 @@ int main() {
       const std::string w_name = pair.substr(0, pair.find('/')), h_name = pair.substr(pair.find('/') + 1);
 
       // ----- 2. The displacement space W^h and its Dirichlet condition -------------------
-      // A space is a reference element repeated over the cells (fe_space.hpp).  P1+ adds
+      // A space is a reference element repeated over the cells (fe/fe_space.hpp).  P1+ adds
       // one cubic bubble 27λ0λ1λ2 per triangle to P1; its vertex dofs stay the vertex
       // values, which is where the constraints act.  The DirichletLift splits the dofs
       // of W^h into free and fixed (u = 0.02 on ∂Ω): only free dofs are unknowns.

@@ -19,8 +19,8 @@
 //   cdyn run --set mesh.n=10      (the default scene: dt = 0.001, T = 0.8)
 //   prints the same energies into history.csv; ctest -R example_2 compares them.
 //
-// Files: kernel/cdyn/scalar_wave.hpp, constrained_problem.hpp, mass_model.hpp,
-// time_scheme.hpp, qp.hpp; docs/semi_discretization.md, docs/schemes.md.
+// Files: kernel/cdyn/scalar_wave.hpp, problems/constrained_problem.hpp, mass/mass_model.hpp,
+// schemes/time_scheme.hpp, qp/bound_qp.hpp; docs/semi_discretization.md, docs/schemes.md.
 #include <cdyn/qp/step_solver.hpp>
 #include <cdyn/problems/scalar_wave.hpp>
 #include <cdyn/schemes/time_scheme.hpp>

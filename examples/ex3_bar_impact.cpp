@@ -14,7 +14,7 @@
 //   constraint on the half step picks one that gains energy at the impact.  Two ways
 //   remove the inertia of the contact vertex and restore (12):
 //     - the redistributed mass (Khenous–Laborde–Renard): M = TᵀM T with no mass on the
-//       contact dof, total mass and moments kept (mass_redistribution.hpp);
+//       contact dof, total mass and moments kept (mass/redistribution.hpp);
 //     - the seed's pair P1+/P0 (a quadratic bubble per interval, velocities piecewise
 //       constant): M = BᵀC⁻¹B is singular by construction.
 //   We run all four with the same scheme and step and measure the errors.
@@ -23,8 +23,8 @@
 //   build-X/examples/ex3_bar_impact            (4 × 240 steps, well under a second)
 //   ctest -R example_3 checks the table against docs/bar_impact.md §6.1 and `cdyn run`.
 //
-// Files: kernel/cdyn/bar_exact.hpp, scalar_wave.hpp, mass_model.hpp, mass_classical.hpp,
-// mass_redistribution.hpp, norms.hpp; docs/bar_impact.md.
+// Files: kernel/cdyn/bar_exact.hpp, problems/scalar_wave.hpp, mass/mass_model.hpp, mass/classical.hpp,
+// mass/redistribution.hpp, fe/norms.hpp; docs/bar_impact.md.
 #include <algorithm>
 #include <cdyn/exact/bar_exact.hpp>
 #include <cdyn/fe/norms.hpp>

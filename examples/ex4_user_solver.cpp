@@ -1,7 +1,7 @@
 // ex4_user_solver.cpp — Example 4: writing your own step solver and plugging it in.
 //
 // What it teaches
-//   Every implicit scheme solves, once per step, the bound-constrained QP (qp.hpp)
+//   Every implicit scheme solves, once per step, the bound-constrained QP (qp/bound_qp.hpp)
 //       min ½ XᵀSX − rᵀX   subject to  lower ≤ X ≤ upper,
 //   and sees the solver only through the interface StepSolver::solve.  A student can
 //   therefore replace the production solver (pdas: a semismooth Newton method with
@@ -20,7 +20,7 @@
 //   ctest -R example_4.
 //
 // Files: kernel/cdyn/qp.hpp (StepSolver, BoundQP, QPResult, the KKT measure,
-// QuadraticForm, finish_result), qp_pgs.hpp (the kernel's Gauss–Seidel), docs/qp.md.
+// QuadraticForm, finish_result), qp/pgs.hpp (the kernel's Gauss–Seidel), docs/qp.md.
 #include <algorithm>
 #include <cdyn/base/error.hpp>
 #include <cdyn/qp/checks.hpp>
@@ -61,7 +61,7 @@ class ProjectedJacobi : public StepSolver {
       const Eigen::VectorXd gradient = form_.apply(result.X) - qp.r;  // S X − r
       result.X = (result.X - omega * gradient.cwiseQuotient(D)).cwiseMax(qp.lower).cwiseMin(qp.upper);
       result.iterations = sweep;
-      // The common stopping test of every cdyn solver (qp.hpp): the natural residual
+      // The common stopping test of every cdyn solver (qp/bound_qp.hpp): the natural residual
       // ‖X − P(X − D⁻¹(SX − r))‖_∞, scaled; finish_result also fills the reaction λ =
       // SX − r and the active set the scheme reports.
       if (sweep % 10 == 0) {

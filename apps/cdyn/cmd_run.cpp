@@ -29,6 +29,8 @@
 #include "cdyn/atomic_file.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/fields_output.hpp"
+#include "cdyn/post/contact_force.hpp"
+#include "cdyn/post/linear_momentum.hpp"
 #include "commands.hpp"
 #include "contact_history.hpp"
 #include "embedded_scripts.hpp"
@@ -75,13 +77,14 @@ std::vector<std::string> probe_columns(const Simulation& sim, const Probe& pr) {
 // field), v (displacement rate over the last step) at the point, and λ at the vertex
 // nearest to it (scalar: the seed's multiplier; elasticity: λ_N = −F·n).
 std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::VectorXd& U_full,
-                          const Eigen::VectorXd& rate_full, const State& s, const Eigen::VectorXd& reaction_xy) {
+                          const Eigen::VectorXd& rate_full, const Eigen::VectorXd& reaction_xy) {
   const FESpace& W = *sim.problem.W;
   std::vector<double> out;
   for (const Eigen::VectorXd* field : {&U_full, &rate_full})
     for (int k = 0; k < sim.components; ++k) out.push_back(W.value_in_cell(*field, pr.where.cell, pr.where.xi, k));
-  out.push_back(sim.components == 1 ? vertex_multiplier(sim.problem, s.reaction, pr.vertex)
-                                    : normal_multiplier(sim, reaction_xy, pr.vertex));
+  const Point lambda = vertex_multiplier(sim.problem, reaction_xy, pr.vertex);
+  const Point n = sim.plane_normal;
+  out.push_back(sim.components == 1 ? lambda.x : lambda.x * n.x + lambda.y * n.y + 0.0);  // λ_N = λ·n (+ 0.0: no −0)
   return out;
 }
 
@@ -136,7 +139,7 @@ class History {
     csv_.precision(17);
     csv_ << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s";
     if (sim.components == 2) {
-      momentum_.emplace(sim);
+      momentum_.emplace(sim.problem);
       csv_ << ",contact_force,px,py";
       if (sim.has_plane) contact_.emplace(sim, out / "contact.csv");
     }
@@ -145,14 +148,13 @@ class History {
     csv_ << "\n";
   }
 
-  void record(int step, const State& s, const StepStats& st, const Energy& E, const Eigen::VectorXd& rate) {
+  // reaction_xy: the step's reaction in (x, y) (post/contact_force.hpp).
+  void record(int step, const State& s, const StepStats& st, const Energy& E, const Eigen::VectorXd& rate,
+              const Eigen::VectorXd& reaction_xy) {
     csv_ << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
          << st.qp_iterations << "," << st.qp_seconds;
     const ConstrainedProblem& p = sim_.problem;
     const Eigen::VectorXd U_full = p.full(s.U);
-    Eigen::VectorXd rotated_back;  // the reaction in (x, y), formed only with a rotation
-    if (p.R && s.reaction.size() > 0) rotated_back = p.global(s.reaction);
-    const Eigen::VectorXd& reaction_xy = p.R ? rotated_back : s.reaction;
     if (momentum_) {
       const bool write = step % sim_.contact_every == 0 || step == sim_.n_steps;
       const double force = contact_ ? contact_->record(step, s.t, U_full, reaction_xy, write) : 0.0;
@@ -161,7 +163,7 @@ class History {
       impact_.observe({step, s.t, E.total(), E.kinetic, P}, st.active, force);
     }
     for (const auto& pr : sim_.probes)
-      for (double v : probe(sim_, pr, U_full, rate, s, reaction_xy)) csv_ << "," << v;
+      for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv_ << "," << v;
     csv_ << "\n";
   }
 
@@ -173,7 +175,7 @@ class History {
   }
 
   // summary.json's "impact" (elasticity against a plane), else null.
-  nlohmann::ordered_json impact() const { return contact_ ? impact_.summary(sim_.dt) : nlohmann::ordered_json(); }
+  nlohmann::ordered_json impact() const { return contact_ ? impact_json(impact_.summary(sim_.dt)) : nlohmann::ordered_json(); }
 
  private:
   const Simulation& sim_;
@@ -223,12 +225,14 @@ int cmd_run(const RunOptions& opt) {
   int max_active = 0;
   double max_kkt = 0.0;  // the largest step-QP KKT residual (≤ solver.tol: the steps are solved)
   Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
+  Eigen::VectorXd force_xy;  // the last step's reaction in (x, y), for every output
 
   auto record = [&](int step, const StepStats& st) {
     const Energy E = sim.scheme->energy(s);
     E_final = E.total();
     max_drift = std::max(max_drift, std::abs(E_final - E0) / std::abs(E0));
-    history.record(step, s, st, E, rate);
+    force_xy = reaction_xy(p, s.reaction);
+    history.record(step, s, st, E, rate, force_xy);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -238,7 +242,7 @@ int cmd_run(const RunOptions& opt) {
   auto write_fields_at = [&](int step) {
     if (!fields || (step % sim.output_every != 0 && step != sim.n_steps)) return;
     const auto tf = Clock::now();
-    fields->write(step, s.t, p.full(s.U), rate, s.reaction);
+    fields->write(step, s.t, p.full(s.U), rate, force_xy);
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
@@ -277,7 +281,7 @@ int cmd_run(const RunOptions& opt) {
   const bool partial = steps_done < sim.n_steps;
   if (partial && fields && steps_done % sim.output_every != 0) {  // the last state computed
     const auto tf = Clock::now();
-    fields->write(steps_done, s.t, p.full(s.U), rate, s.reaction);
+    fields->write(steps_done, s.t, p.full(s.U), rate, force_xy);
     fields_seconds += seconds_since(tf);
   }
   const double wall = seconds_since(t0) - fields_seconds;

@@ -53,7 +53,7 @@ int cmd_wellposed(const WellposedOptions& options);
 
 // The setup of condition (12) for a simulation: its Dirichlet parts, constrained
 // vertices and, for elasticity, two components and the plane's normal.  InputError
-// when the check does not apply (rollers: wellposedness.hpp fixes whole vertices).
+// when the check does not apply (rollers: wellposedness/condition12.hpp fixes whole vertices).
 WellPosednessSetup wellposedness_setup(const Simulation& sim);
 
 // Condition (12) for a simulation's pair and constraints, as summary.json's

@@ -33,7 +33,7 @@ std::vector<int> parts(const Mesh& mesh, const std::vector<std::string>& names, 
   return out;
 }
 
-// The one-dof oscillator (oscillator.hpp): physics.m, physics.k, physics.f = F(t).
+// The one-dof oscillator (problems/oscillator.hpp): physics.m, physics.k, physics.f = F(t).
 ConstrainedProblem oscillator(const Mesh& mesh, const SceneSpec& s) {
   OscillatorData o;
   o.m = s.physics.m;
@@ -65,7 +65,7 @@ ScalarWaveData scalar_wave(const Mesh& mesh, const SceneSpec& s) {
 }
 
 // Plane-strain elasticity with frictionless contact against a rigid plane
-// (elastic_contact.hpp): the body force f + ρ·gravity, Dirichlet and Neumann parts,
+// (problems/elastic_contact.hpp): the body force f + ρ·gravity, Dirichlet and Neumann parts,
 // Γ_C and the plane.
 ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   if (mesh.dim != 2) throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");

@@ -42,7 +42,7 @@ struct Simulation {
 
   // Elasticity (physics.model = "elasticity"): two displacement components, and the
   // rigid plane through `plane_point` with unit normal `plane_normal` pointing into the
-  // body's side (elastic_contact.hpp); Γ_C is `contact_parts`.  The scalar models keep
+  // body's side (problems/elastic_contact.hpp); Γ_C is `contact_parts`.  The scalar models keep
   // components = 1 and no plane.
   int components = 1;
   bool has_plane = false;

@@ -1,6 +1,6 @@
 // wellposed_report.cpp — condition (12) for a run's pair and constraints.
 //
-// β = σ_min(G Z) is computed densely (wellposedness.hpp), so runs larger than its
+// β = σ_min(G Z) is computed densely (wellposedness/condition12.hpp), so runs larger than its
 // limit report why it was not computed instead of a number.
 #include <cstdio>
 

@@ -11,6 +11,7 @@
 
 #include "cdyn/atomic_file.hpp"
 #include "cdyn/base/error.hpp"
+#include "cdyn/post/contact_force.hpp"
 
 namespace cdyn {
 
@@ -38,19 +39,6 @@ std::string exact(double x) {
 }
 
 }  // namespace
-
-double vertex_multiplier(const ConstrainedProblem& problem, const Eigen::VectorXd& reaction, int vertex, int k) {
-  if (reaction.size() == 0) return 0.0;
-  const FESpace& W = *problem.W;
-  bool constrained = false;
-  for (int c = 0; c < W.components(); ++c) {
-    const int i = problem.bc->free_index(W.vertex_dof(vertex, c));
-    constrained = constrained || (i >= 0 && (std::isfinite(problem.lower[i]) || std::isfinite(problem.upper[i])));
-  }
-  const int i = problem.bc->free_index(W.vertex_dof(vertex, k));
-  if (!constrained || i < 0) return 0.0;
-  return 0.0 - reaction[i];  // G = −I: λ = −reaction (0.0 − avoids printing −0)
-}
 
 void remove_fields(const std::filesystem::path& out) {
   std::error_code ec;
@@ -95,20 +83,24 @@ FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, c
 }
 
 void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
-                         const Eigen::VectorXd& reaction) {
+                         const Eigen::VectorXd& reaction_xy) {
   const FESpace& W = *problem_.W;
   const int nv = mesh_.n_vertices(), n_comp = W.components();
   const int width = n_comp == 1 ? 1 : 3;  // ParaView's vectors have 3 components
 
-  // Vertex values: scalar dof v of P1, P1+ and P2 is vertex v (fe_space.hpp).
+  // Vertex values: scalar dof v of P1, P1+ and P2 is vertex v (fe/fe_space.hpp).
   std::vector<double> u(static_cast<std::size_t>(width) * nv, 0.0), v(u.size(), 0.0), lambda(u.size(), 0.0);
   for (int vertex = 0; vertex < nv; ++vertex)
     for (int k = 0; k < n_comp; ++k) {
       const int dof = W.vertex_dof(vertex, k), at = width * vertex + k;
       u[at] = U_full[dof];
       v[at] = rate_full[dof];
-      lambda[at] = vertex_multiplier(problem_, reaction, vertex, k);
     }
+  for (int vertex = 0; vertex < nv; ++vertex) {
+    const Point lam = vertex_multiplier(problem_, reaction_xy, vertex);
+    const double c[3] = {lam.x, lam.y, lam.z};
+    for (int k = 0; k < n_comp; ++k) lambda[width * vertex + k] = c[k];
+  }
 
   std::string blocks;
   blocks.reserve(3 * block_size(u.size(), 8) + geometry_blocks_.size());

@@ -6,7 +6,8 @@
 //   u       the displacement, full field (Dirichlet values included);
 //   v       the displacement rate over the last step, (Uⁿ − Uⁿ⁻¹)/dt (0 at step 0);
 //   lambda  the seed's multiplier λ ≤ 0 at the constrained vertices (−reaction of
-//           the step's QP, G = −I), 0 elsewhere.
+//           the step's QP, G = −I; post/contact_force.hpp's vertex_multiplier), 0
+//           elsewhere.
 // Vector-valued spaces give 3-component u, v, lambda (the missing ones 0; lambda
 // = λ_N n for contact against a rigid plane of normal n).
 // Only vertex values are written: a P1+ bubble vanishes at the vertices and a P2
@@ -29,15 +30,6 @@
 
 namespace cdyn {
 
-// The seed's multiplier at vertex v, component k: −reaction where the vertex carries
-// a constraint (the scalar problems' G = −I: λ itself), 0 at unconstrained and
-// Dirichlet vertices and before the first step (reaction empty).  At an inactive
-// constraint it is the QP's residual, zero up to round-off (~1e-14), so λ ≤ 0 holds
-// to that.  For a vector field with a rigid plane of normal n the components make
-// λ_N n (the reaction is in global components, elastic_contact.hpp).  The probes
-// use it too.
-double vertex_multiplier(const ConstrainedProblem& problem, const Eigen::VectorXd& reaction, int vertex, int k = 0);
-
 // Removes the fields of an earlier run in `out` (fields.pvd, fields/step_*.vtu), so
 // that a directory never mixes two runs' files.
 void remove_fields(const std::filesystem::path& out);
@@ -48,10 +40,10 @@ class FieldsWriter {
   FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, const ConstrainedProblem& problem);
 
   // Writes fields/step_NNNNNN.vtu for the state at `step`: U_full and rate_full are
-  // coefficient vectors on all dofs of W^h, reaction the QP reaction on its free dofs
-  // (empty: none yet).
+  // coefficient vectors on all dofs of W^h, reaction_xy the step's reaction on its free
+  // dofs in (x, y) components (post/contact_force.hpp's reaction_xy; empty: none yet).
   void write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
-             const Eigen::VectorXd& reaction);
+             const Eigen::VectorXd& reaction_xy);
 
   // Writes fields.pvd, the time series of the files written so far.
   void finish() const;

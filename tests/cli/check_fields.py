@@ -11,7 +11,11 @@ Three short runs, each file read with python3-meshio:
   - a 1D bar: VTK_LINE cells, n + 1 points on the x axis, u = 0 at the clamped end;
   - data/scenes/lshape.toml run from another directory (its mesh.file is relative to
     the scene file): as many points as `cdyn mesh` reports vertices, u = 0.02 on the
-    physical group "outer" and not on the free re-entrant sides.
+    physical group "outer" and not on the free re-entrant sides;
+  - data/scenes/ramp.toml (a plane inclined by 30°, whose contact unknowns are rotated
+    normal/tangential components): at the vertices in contact the lambda vector is the
+    seed's λ_N n, parallel to the plane's normal n (|λ × n| ≤ 1e-12 |λ|: round-off of the
+    rotation) with λ·n < 0; written in the rotated components it would point along x.
 Exit status 77 (skipped) when meshio or numpy is missing.
 """
 import csv
@@ -101,4 +105,15 @@ outer = (x < eps) | (y < eps) | ((x > 1 - eps) & (y < 0.5 + eps)) | ((y > 1 - ep
 reentrant = ~outer & (((np.abs(y - 0.5) < eps) & (x > 0.5)) | ((np.abs(x - 0.5) < eps) & (y > 0.5)))
 assert np.all(u[outer] == 0.02) and reentrant.any() and np.all(u[reentrant] < 0.02)
 print(f"lshape: {len(m.points)} points, u = 0.02 on {outer.sum()} outer points, free on {reentrant.sum()} re-entrant")
+# An inclined plane: λ = λ_N n at the contact vertices, in (x, y).
+ramp = os.path.join(os.path.dirname(lshape), "ramp.toml")
+rows, frames = run(os.path.join(work, "fields_ramp"), "time.T=1e-3", "output.every=100", scene=ramp)
+normal = np.array([-0.5, 0.8660254037844386])
+lam = frames[100].point_data["lambda"][:, :2]
+active = np.linalg.norm(lam, axis=1) > 1e-6 * np.abs(lam).max()
+assert active.sum() >= 2, active.sum()
+cross = np.abs(lam[active, 0] * normal[1] - lam[active, 1] * normal[0]) / np.linalg.norm(lam[active], axis=1)
+assert cross.max() <= 1e-12, cross.max()
+assert np.all(lam[active] @ normal < 0), lam[active] @ normal
+print(f"ramp: {active.sum()} vertices in contact at step 100, max |λ × n|/|λ| = {cross.max():.1e}, λ·n < 0")
 print("check_fields: ok")

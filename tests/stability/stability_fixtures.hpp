@@ -1,6 +1,6 @@
 // stability_fixtures.hpp — what the hard-case tests of tests/stability share: a run
 // loop that records the energy, the constraint violation and the QP iteration counts
-// of every step, and the 1D bars of bar_exact.hpp as ConstrainedProblems.
+// of every step, and the 1D bars of exact/bar_exact.hpp as ConstrainedProblems.
 //
 // Numbers are printed by every test (and collected in docs/stability.md); the
 // tolerances are justified where they are asserted.

@@ -1,5 +1,5 @@
 // test_hard_materials.cpp — plane-strain elasticity near incompressibility and with a
-// very stiff or very soft body against the rigid plane (elastic_contact.hpp).
+// very stiff or very soft body against the rigid plane (problems/elastic_contact.hpp).
 //
 // The body: the block [0, 1] × [d, 1 + d] (d = 0.01, n = 8), clamped on its top,
 // under gravity (f = (0, −1)), its bottom in contact with the plane y = 0.

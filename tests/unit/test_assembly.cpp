@@ -106,7 +106,7 @@ TEST(Assembly, ReferenceTriangleP1Stiffness) {
 
 TEST(Assembly, TheBubbleIsOrthogonalToP1InEnergy) {
   // ∫_K ∇b = ∮_∂K b n = 0 since b = 27λ0λ1λ2 vanishes on ∂K, so with ∇φ_i constant
-  // ∫_K ∇φ_i·∇b = 0: A couples no vertex with a bubble, and assembly.cpp does not store
+  // ∫_K ∇φ_i·∇b = 0: A couples no vertex with a bubble, and fe/assembly.cpp does not store
   // those entries.  The premise, on the reference cell (∫_K ∇b = |det J| J⁻ᵀ ∫ ∇̂b̂, so
   // zero there is zero on every cell), with a rule exact for ∇b (degree 2):
   const QuadratureRule q = cell_quadrature(2, 4);
@@ -129,7 +129,7 @@ TEST(Assembly, TheBubbleIsOrthogonalToP1InEnergy) {
     const SparseMatrix A1 = components == 1 ? assemble_laplace(P1) : assemble_elasticity(P1, 3.0, 1.0);
     const SparseMatrix Ab = components == 1 ? assemble_laplace(P1b) : assemble_elasticity(P1b, 3.0, 1.0);
     EXPECT_EQ(Ab.nonZeros(), A1.nonZeros() + cells * components * components) << components;
-    const int n1 = nv * components;  // vertex dofs first (fe_space.hpp)
+    const int n1 = nv * components;  // vertex dofs first (fe/fe_space.hpp)
     const double defect = (Eigen::MatrixXd(Ab).topLeftCorner(n1, n1) - Eigen::MatrixXd(A1)).norm();
     EXPECT_LE(defect, 1e-14 * A1.norm()) << components;
   }

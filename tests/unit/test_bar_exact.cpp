@@ -51,7 +51,7 @@ struct Case {
   std::function<double(double)> u0, v0;    // the initial data as stated in the problem
 };
 
-// The fields both exact solutions provide under the same names (bar_exact.hpp).
+// The fields both exact solutions provide under the same names (exact/bar_exact.hpp).
 template <class Bar>
 void set_exact_fields(Case& k, const Bar& b) {
   k.u = [b](double x, double t) { return b.displacement(x, t); };

@@ -1,4 +1,4 @@
-// test_condensation.cpp — static condensation of the bubbles (condensation.hpp): it picks
+// test_condensation.cpp — static condensation of the bubbles (qp/condensation.hpp): it picks
 // the bubbles of P1+/P0 and nothing else, makes no fill, and is an identity — the
 // condensed QP and the full QP have the same solution and reaction, and a time loop
 // with and without it gives the same states to round-off.

@@ -1,4 +1,4 @@
-// test_elastic_contact.cpp — the plane-strain Signorini problem (elastic_contact.hpp):
+// test_elastic_contact.cpp — the plane-strain Signorini problem (problems/elastic_contact.hpp):
 //
 //  (i)   the gap comes from the geometry: g(a) = −(a − p)·n on the constrained unknowns,
 //        a lower bound for a normal towards the body, on u_x/u_y or the rotated normal;
@@ -28,6 +28,8 @@
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/mass/rotated.hpp"
+#include "cdyn/post/contact_force.hpp"
+#include "cdyn/post/contact_pressure.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 #include "cdyn/wellposedness/condition12.hpp"
 
@@ -489,4 +491,45 @@ TEST(ElasticContact, RestingBlockCarriesItsWeight) {
     std::printf("resting block %-12s: contact force (%.12f, %.12f), weight * n = (%.12f, %.12f)\n", label(m).c_str(),
                 fx, fy, weight * n.x, weight * n.y);
   }
+}
+
+TEST(ElasticContact, PostProcessingInTheMeshFrame) {
+  // The resting block above, read through the kernel's post-processing (cdyn/post/):
+  // the reaction turned back to (x, y) once, the multiplier of each contact vertex the
+  // seed's λ_N n (parallel to the plane's normal, λ·n ≤ 0, in (x, y) although the
+  // unknowns there are rotated components), the total normal force the weight
+  // (Σ F_N = ρ g |Ω|), and the pressures integrating to it (Σ p(a) w(a) = Σ F_N).
+  const Mesh mesh = block(4, kTheta, 0.0);
+  ElasticContactData d = hanging_block(mesh, kTheta, Method{Element::P1Bubble, "P0"}, true);
+  d.dirichlet_parts.clear();
+  const ConstrainedProblem p = build_elastic_contact(mesh, d);
+  auto solver = make_step_solver("pdas", tight());
+  auto scheme = make_time_scheme("backward_euler", p, *solver, 0.5);
+  State s;
+  s.U = Eigen::VectorXd::Zero(p.n_free());
+  s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
+  for (int k = 0; k < 150; ++k) scheme->step(s);
+
+  const Eigen::VectorXd force = reaction_xy(p, s.reaction);
+  ASSERT_TRUE(p.R.has_value());
+  EXPECT_LE((force - *p.R * s.reaction).lpNorm<Eigen::Infinity>(), 0.0);
+  const Point n = turn({0.0, 1.0}, kTheta);
+  const ContactPressure contact(p, d.contact_parts, d.obstacle_point, d.obstacle_normal);
+  const double weight = kGravity * mesh.measure();
+  EXPECT_EQ(static_cast<int>(contact.vertices().size()), 5);  // the bottom side's 5 vertices
+  EXPECT_NEAR(contact.total_force(force), weight, 1e-10 * weight);
+  double integral = 0.0;
+  for (const ContactPressure::Vertex& a : contact.vertices()) {
+    integral += contact.pressure(force, a) * a.weight;
+    const Point lam = vertex_multiplier(p, force, a.vertex);
+    const double along = lam.x * n.x + lam.y * n.y, across = lam.x * n.y - lam.y * n.x;
+    EXPECT_LE(along, 0.0);
+    EXPECT_LE(std::abs(across), 1e-12 * weight) << "vertex " << a.vertex << ": λ is not along n";
+    EXPECT_NEAR(along, -contact.normal_force(force, a), 1e-15 * weight);
+    EXPECT_LE(std::abs(contact.gap(p.full(s.U), a)), 1e-10);  // resting on the plane
+  }
+  EXPECT_NEAR(integral, weight, 1e-10 * weight);
+  const Point none = vertex_multiplier(p, force, mesh.part_vertices({mesh.part_index("top")})[0]);
+  EXPECT_EQ(none.x, 0.0);  // a vertex off Γ_C carries no multiplier
+  EXPECT_EQ(none.y, 0.0);
 }

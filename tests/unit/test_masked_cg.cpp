@@ -1,4 +1,4 @@
-// test_masked_cg.cpp — preconditioned CG with a held set (masked_cg.hpp) against a
+// test_masked_cg.cpp — preconditioned CG with a held set (linalg/masked_cg.hpp) against a
 // dense solve of the reduced system S_II y_I = b_I.
 //
 // The reference is mathematics: with the held rows set to b and the free block solved

@@ -1,5 +1,5 @@
 // test_mass_model.cpp — the mass operators M = Bᵀ C⁻¹ B of the seed's pairs and the
-// classical mass models (mass_model.hpp), and Theorem 2 (energy conservation of the
+// classical mass models (mass/mass_model.hpp), and Theorem 2 (energy conservation of the
 // unconstrained semi-discrete problem) for each of them.
 //
 // Every expected number comes from mathematics:

@@ -1,5 +1,5 @@
 // test_qp_rotation.cpp — nodal Signorini on inclined planes as bounds after the node-local
-// rotation of qp_rotation.hpp.
+// rotation of problems/nodal_rotation.hpp.
 //
 // Reference: the same QP with the general linear constraints n_k · u_k ≤ g_k, solved by
 // enumerating which constraints are active (2^K dense KKT systems [[S, Gᵀ], [G, 0]]),

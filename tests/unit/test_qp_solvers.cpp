@@ -1,4 +1,4 @@
-// test_qp_solvers.cpp — the four step solvers (qp.hpp) on random SPD bound-constrained QPs.
+// test_qp_solvers.cpp — the four step solvers (qp/bound_qp.hpp) on random SPD bound-constrained QPs.
 //
 // The reference answers come from mathematics, not from one of the solvers:
 //  - small problems (n ≤ 8): exhaustive enumeration of the 3ⁿ active sets, each a dense
@@ -281,7 +281,7 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   // bounds), then the bounded QP solved again and again from its own solution, as in a
   // time loop whose contact zone has stopped moving.  Each of these calls meets an
   // active set that differs from the factor's: the first two solve it by CG (no row
-  // update measured yet: qp_pdas.cpp cg_pays), then the set has served three solves in
+  // update measured yet: qp/pdas/pdas.cpp cg_pays), then the set has served three solves in
   // a row and the factor is brought to it; from there on a call is one forward/back
   // solve with the factor and no CG.
   const BoundQP qp = random_problem(20, 20, 7, false);
@@ -310,7 +310,7 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
 
 TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   // A cold start whose every system is solved by CG (the factor is that of S with no
-  // active bound): the iterates are solved loosely (qp_pdas.cpp kLooseSolve) and the
+  // active bound): the iterates are solved loosely (qp/pdas/pdas.cpp kLooseSolve) and the
   // repeating active set is confirmed on a tight solve.  The result must meet tol like
   // any other, with the active set of the direct solver (factor only) and X within the
   // sum of the two a-posteriori error bounds.
@@ -445,7 +445,7 @@ TEST(QPSolvers, PgsRefusesTheSaddleForm) {
 
 // Plain PDAS (Newton-min) can cycle when S is not an M-matrix.  This 3 × 3 SPD case
 // (X ≥ 0) was found by a random search for a cold start that repeats an active set.
-// The test first replays plain PDAS densely (the rule of qp_pdas.hpp, with D = diag S)
+// The test first replays plain PDAS densely (the rule of qp/pdas/pdas.hpp, with D = diag S)
 // to show that it cycles, then checks that the solver's guard still returns the exact,
 // enumerated solution.
 TEST(QPSolvers, PdasCyclingGuardStillFindsTheSolution) {

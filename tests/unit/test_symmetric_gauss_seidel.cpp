@@ -1,5 +1,5 @@
 // test_symmetric_gauss_seidel.cpp — the multicolour symmetric Gauss–Seidel operator of
-// symmetric_gauss_seidel.hpp against dense linear algebra.
+// linalg/symmetric_gauss_seidel.hpp against dense linear algebra.
 //
 //  - The colouring is proper (no two coupled unknowns share a colour) and, for the
 //    5-point grid Laplacian numbered row by row, the greedy colouring is the red-black

@@ -1,5 +1,5 @@
 // test_wellposedness.cpp — condition (12) of the seed, β = σ_min(G Z), Z an
-// orthonormal basis of Ker B (wellposedness.hpp).
+// orthonormal basis of Ker B (wellposedness/condition12.hpp).
 //
 // Expected values come from mathematics where it gives them:
 //  - hand-sized B, G with a closed-form β (1/√2, 0, 1);

@@ -1,4 +1,4 @@
-// error.hpp — the two kinds of failure cdyn reports.
+// base/error.hpp — the two kinds of failure cdyn reports.
 //
 // Not part of the seed's mathematics: the kernel's contract for failures.
 //

@@ -1,4 +1,4 @@
-// bar_exact.cpp — the two bar impact solutions, written region by region of the
+// exact/bar_exact.cpp — the two bar impact solutions, written region by region of the
 // characteristic diagrams of docs/bar_impact.md.
 #include "cdyn/exact/bar_exact.hpp"
 

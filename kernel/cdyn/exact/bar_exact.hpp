@@ -1,4 +1,4 @@
-// bar_exact.hpp — exact solutions of two 1D elastic bar impact problems, the
+// exact/bar_exact.hpp — exact solutions of two 1D elastic bar impact problems, the
 // analytic references of the `bar` model (derivations: docs/bar_impact.md).
 //
 // They are the seed's problem (1)–(6) in one dimension (σ = E u_x, Γ_C the end x = 0,

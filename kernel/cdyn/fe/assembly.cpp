@@ -1,4 +1,4 @@
-// assembly.cpp — cell-by-cell assembly of A, B, C and L.
+// fe/assembly.cpp — cell-by-cell assembly of A, B, C and L.
 //
 // Every routine follows the same three steps: tabulate the reference basis at the
 // quadrature points once, then for each cell map the gradients with J⁻ᵀ and the

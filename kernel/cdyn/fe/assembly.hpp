@@ -1,4 +1,4 @@
-// assembly.hpp — the matrices and vectors of the seed's semi-discretization (eq. 10):
+// fe/assembly.hpp — the matrices and vectors of the seed's semi-discretization (eq. 10):
 //
 //   A_ij = a(φ_i, φ_j)    stiffness: the Laplacian ∫∇φ_i·∇φ_j, or plane-strain
 //                         elasticity ∫ λ div φ_i div φ_j + 2μ ε(φ_i):ε(φ_j)
@@ -7,9 +7,9 @@
 //   L_i  = l(φ_i) = ∫ f φ_i
 //
 // All integrals use a quadrature rule exact for the polynomial integrand
-// (quadrature.hpp), e.g. degree 6 for the mass of the P1+ bubble on triangles.
+// (fe/quadrature.hpp), e.g. degree 6 for the mass of the P1+ bubble on triangles.
 // Matrices are Eigen column-major sparse matrices (plain CSC), as CHOLMOD and
-// UMFPACK take them.  Dof numbering is the spaces' (fe_space.hpp); vector-valued
+// UMFPACK take them.  Dof numbering is the spaces' (fe/fe_space.hpp); vector-valued
 // spaces give block matrices with the components interleaved.
 #pragma once
 

@@ -1,4 +1,4 @@
-// dirichlet.cpp — free/fixed dof partition, lifting, restriction and extension.
+// fe/dirichlet.cpp — free/fixed dof partition, lifting, restriction and extension.
 #include "cdyn/fe/dirichlet.hpp"
 
 #include <algorithm>

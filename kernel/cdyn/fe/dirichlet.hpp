@@ -1,4 +1,4 @@
-// dirichlet.hpp — Dirichlet conditions by lifting and elimination.
+// fe/dirichlet.hpp — Dirichlet conditions by lifting and elimination.
 //
 // The seed's u = 0 on Γ_D (eq. 4; the model problem's u = 0.05, its experiments' u = 0.02
 // on ∂Ω): W^h is the affine space of finite element functions with those values.

@@ -1,4 +1,4 @@
-// element.cpp — basis functions of P0, P1, P1+, P2 in barycentric coordinates.
+// fe/element.cpp — basis functions of P0, P1, P1+, P2 in barycentric coordinates.
 #include "cdyn/fe/element.hpp"
 
 #include "cdyn/base/error.hpp"

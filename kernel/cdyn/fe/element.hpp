@@ -1,4 +1,4 @@
-// element.hpp — the reference finite elements P0, P1, P1+ and P2 on intervals and
+// fe/element.hpp — the reference finite elements P0, P1, P1+ and P2 on intervals and
 // triangles: their local basis functions and reference gradients.
 //
 // Everything is written in barycentric coordinates of the reference cell:

@@ -1,4 +1,4 @@
-// fe_space.cpp — dof maps, nodal interpolation and point evaluation.
+// fe/fe_space.cpp — dof maps, nodal interpolation and point evaluation.
 #include "cdyn/fe/fe_space.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// fe_space.hpp — a finite element space on a mesh: its degrees of freedom (dof map).
+// fe/fe_space.hpp — a finite element space on a mesh: its degrees of freedom (dof map).
 //
 // A space is a reference element (P0, P1, P1+, P2) repeated over the cells of a mesh,
 // with `components` copies for vector-valued fields (2 for plane elasticity).  Both
@@ -47,7 +47,7 @@ class FESpace {
   int local_dofs() const { return local_dofs_; }             // scalar dofs per cell
   int degree() const { return polynomial_degree(element_, dim()); }
 
-  // Scalar dofs of cell c, in local order (see element.hpp).
+  // Scalar dofs of cell c, in local order (see fe/element.hpp).
   std::span<const int> cell_dofs(int c) const {
     return {cell_dofs_.data() + static_cast<std::size_t>(c) * local_dofs_, static_cast<std::size_t>(local_dofs_)};
   }

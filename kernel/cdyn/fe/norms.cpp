@@ -1,4 +1,4 @@
-// norms.cpp — L2 and H1-seminorm errors by high-order cell quadrature.
+// fe/norms.cpp — L2 and H1-seminorm errors by high-order cell quadrature.
 #include "cdyn/fe/norms.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// norms.hpp — errors of a finite element function against an exact solution.
+// fe/norms.hpp — errors of a finite element function against an exact solution.
 //
 //   ‖u − u_h‖_L2 = (∫ (u − u_h)²)^½,   |u − u_h|_H1 = (∫ |∇u − ∇u_h|²)^½,
 // integrated cell by cell with a rule of degree 2·deg + 4, well above the

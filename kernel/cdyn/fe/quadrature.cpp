@@ -1,4 +1,4 @@
-// quadrature.cpp — Gauss–Legendre (Golub–Welsch) and collapsed triangle rules.
+// fe/quadrature.cpp — Gauss–Legendre (Golub–Welsch) and collapsed triangle rules.
 #include "cdyn/fe/quadrature.hpp"
 
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-// quadrature.hpp — quadrature rules on the reference interval and triangle.
+// fe/quadrature.hpp — quadrature rules on the reference interval and triangle.
 //
 // Reference cells: the interval [0, 1] and the triangle with vertices (0,0), (1,0),
 // (0,1).  A rule of degree p integrates every polynomial of total degree <= p exactly

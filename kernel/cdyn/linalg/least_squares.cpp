@@ -1,4 +1,4 @@
-// least_squares.cpp — SuiteSparseQR through Eigen's SPQR wrapper.
+// linalg/least_squares.cpp — SuiteSparseQR through Eigen's SPQR wrapper.
 #include "cdyn/linalg/least_squares.hpp"
 
 #include <Eigen/SPQRSupport>

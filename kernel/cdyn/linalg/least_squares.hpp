@@ -1,4 +1,4 @@
-// least_squares.hpp — x minimizing ‖K x − b‖₂ for a sparse K of any shape or rank
+// linalg/least_squares.hpp — x minimizing ‖K x − b‖₂ for a sparse K of any shape or rank
 // (used for the initial acceleration, M Ü⁰ = L − A U⁰ of eq. 16 with a singular M).
 //
 // The schemes need it once per run, to start from an acceleration when the mass is

@@ -1,5 +1,5 @@
-// masked_cg.cpp — CG on S̃ with a held set, preconditioned by symmetric Gauss–Seidel
-// through Eisenstat's trick; see masked_cg.hpp.
+// linalg/masked_cg.cpp — CG on S̃ with a held set, preconditioned by symmetric Gauss–Seidel
+// through Eisenstat's trick; see linalg/masked_cg.hpp.
 #include "cdyn/linalg/masked_cg.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// symmetric_gauss_seidel.cpp — greedy colouring, the scaled triangles and their sweeps;
-// see symmetric_gauss_seidel.hpp.
+// linalg/symmetric_gauss_seidel.cpp — greedy colouring, the scaled triangles and their sweeps;
+// see linalg/symmetric_gauss_seidel.hpp.
 #include "cdyn/linalg/symmetric_gauss_seidel.hpp"
 
 #include "cdyn/base/error.hpp"

@@ -1,4 +1,4 @@
-// symmetric_gauss_seidel.hpp — the symmetric Gauss–Seidel preconditioner of masked_cg.hpp
+// linalg/symmetric_gauss_seidel.hpp — the symmetric Gauss–Seidel preconditioner of linalg/masked_cg.hpp
 // in a multicolour ordering, applied by Eisenstat's trick.
 //
 // Scaling and splitting.  With D = diag(S), Ŝ = D^{-1/2} S D^{-1/2} has a unit diagonal

@@ -1,4 +1,4 @@
-// mass_classical.cpp — consistent, lumped and redistributed mass matrices.
+// classical.cpp — consistent, lumped and redistributed mass matrices.
 #include "cdyn/mass/classical.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// mass_model.cpp — make_mass_model: a MassSpec to a model (a pair or a classical mass).
+// mass/mass_model.cpp — make_mass_model: a MassSpec to a model (a pair or a classical mass).
 #include "cdyn/mass/mass_model.hpp"
 
 #include <cmath>

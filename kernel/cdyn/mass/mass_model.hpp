@@ -1,13 +1,13 @@
-// mass_model.hpp — the inertia of the semi-discrete problem (seed eqs. 10–11).
+// mass/mass_model.hpp — the inertia of the semi-discrete problem (seed eqs. 10–11).
 //
 // The seed's class of approximations carries the velocity in its own space H^h:
 //     C V = B U̇,   M = Bᵀ C⁻¹ B,   kinetic energy ½ Vᵀ C V  (= ½ U̇ᵀ M U̇),
-// with B_ij = ∫ψ_i φ_j and C_ij = ∫ψ_i ψ_j (assembly.hpp).  The classical mass models
+// with B_ij = ∫ψ_i φ_j and C_ij = ∫ψ_i ψ_j (fe/assembly.hpp).  The classical mass models
 // (consistent, lumped, redistributed) are the special case V = U̇ in W^h, where B and
 // C are replaced by the chosen M itself: C V = B U̇ reads M (V − U̇) = 0, and V = U̇.
 //
 // Everything here acts on the FREE dofs of W^h (Dirichlet dofs eliminated, see
-// dirichlet.hpp): the velocity of a fixed dof is the rate of its data, which the
+// fe/dirichlet.hpp): the velocity of a fixed dof is the rate of its data, which the
 // kinetic energy of the free motion does not see (the Dirichlet data of the seed's
 // experiments are constant in time).
 //
@@ -50,7 +50,7 @@ class MassModel {
   // diagonal) and the classical models.  Empty for continuous H^h (C⁻¹ is dense).
   virtual std::optional<SparseMatrix> matrix() const = 0;
 
-  // S = A + k M in the sparse saddle form [[A, k Bᵀ], [B, −C]] (qp.hpp), for the
+  // S = A + k M in the sparse saddle form [[A, k Bᵀ], [B, −C]] (qp/bound_qp.hpp), for the
   // models without a sparse M.
   virtual SaddleForm saddle(const SparseMatrix& A, double k) const = 0;
 
@@ -73,7 +73,7 @@ class MassModel {
 
 }  // namespace cdyn
 
-// ----- construction (mass_model.cpp, mixed.cpp, classical.cpp) ---------------
+// ----- construction (mass/mass_model.cpp, mixed.cpp, classical.cpp) ---------------
 // See docs/semi_discretization.md for the construction of each M.
 
 #include <vector>

@@ -1,4 +1,4 @@
-// mass_mixed.cpp — M = Bᵀ C⁻¹ B for the pairs W^h/H^h (seed eq. 11), and the blocks B, C.
+// mixed.cpp — M = Bᵀ C⁻¹ B for the pairs W^h/H^h (seed eq. 11), and the blocks B, C.
 #include "cdyn/mass/mixed.hpp"
 
 #include <Eigen/CholmodSupport>

@@ -1,15 +1,15 @@
-// mass_mixed.hpp — the seed's pairs W^h/H^h as mass models (seed eqs. 10–11):
+// mixed.hpp — the seed's pairs W^h/H^h as mass models (seed eqs. 10–11):
 //
 //     C V = B U̇,   M = Bᵀ C⁻¹ B,   kinetic energy ½ Vᵀ C V,
 //
-// B and C from mixed_blocks() (mass_model.hpp): free columns of W^h, the H^h dofs left
+// B and C from mixed_blocks() (mass/mass_model.hpp): free columns of W^h, the H^h dofs left
 // by the Dirichlet conditions, both scaled by ρ.
 //  - H^h = P0: C is diagonal (the cell measures), M = Bᵀ C⁻¹ B is sparse (its pattern
 //    is the cell–cell coupling of W^h) and matrix() returns it;
 //  - H^h continuous (P1, ...): C⁻¹ is dense, matrix() is empty, S = A + k M is given
 //    by its saddle form {A, B, C, k}; velocity() solves with a Cholesky factor of C
 //    (CHOLMOD, analysed and factorized once).  For H^h = W^h (P1/P1) B = C, so
-//    velocity() is the identity and M = C (implicit_step.cpp then builds S explicitly).
+//    velocity() is the identity and M = C (schemes/step_qp_scheme.cpp then builds S explicitly).
 #pragma once
 
 #include <memory>

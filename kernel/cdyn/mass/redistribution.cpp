@@ -1,4 +1,4 @@
-// mass_redistribution.cpp — the affine-extrapolation operator T (see the header).
+// redistribution.cpp — the affine-extrapolation operator T (see the header).
 #include "cdyn/mass/redistribution.hpp"
 
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-// mass_redistribution.hpp — the redistribution operator T of the "redistributed" mass
+// redistribution.hpp — the redistribution operator T of the "redistributed" mass
 // model (Khenous–Laborde–Renard 2008; seed slide "Mass Redistribution Method"):
 //
 //     M_red = Tᵀ M_ff T,

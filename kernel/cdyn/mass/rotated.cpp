@@ -1,4 +1,4 @@
-// mass_rotated.cpp — the mass model in rotated unknowns; see mass_rotated.hpp.
+// rotated.cpp — the mass model in rotated unknowns; see mass/rotated.hpp.
 #include "cdyn/mass/rotated.hpp"
 
 #include <algorithm>

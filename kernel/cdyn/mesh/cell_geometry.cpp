@@ -1,4 +1,4 @@
-// cell_geometry.cpp — affine reference-to-physical maps of intervals, triangles and
+// mesh/cell_geometry.cpp — affine reference-to-physical maps of intervals, triangles and
 // tetrahedra.
 #include "cdyn/mesh/cell_geometry.hpp"
 

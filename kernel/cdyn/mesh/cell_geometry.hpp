@@ -1,4 +1,4 @@
-// cell_geometry.hpp — the affine map from the reference cell to a mesh cell.
+// mesh/cell_geometry.hpp — the affine map from the reference cell to a mesh cell.
 //
 //   x = a0 + J ξ,   J = [a1 − a0, …, a_d − a0]  (d = 1, 2, 3 columns),
 // so ∫_K f dx = |det J| ∫_K̂ f∘F dξ and ∇_x φ = J⁻ᵀ ∇_ξ φ̂.  Only the leading d × d block

@@ -1,4 +1,4 @@
-// mesh.cpp — simplicial meshes: measures, boundary bookkeeping, structured meshes.
+// mesh/mesh.cpp — simplicial meshes: measures, boundary bookkeeping, structured meshes.
 #include "cdyn/mesh/mesh.hpp"
 
 #include <algorithm>
@@ -59,7 +59,7 @@ double Mesh::h_max() const {
       for (int j = i + 1; j <= dim; ++j) {
         const Point& a = vertices[t[i]];
         const Point& b = vertices[t[j]];
-        h = std::max(h, std::hypot(b.x - a.x, b.y - a.y, b.z - a.z));
+        h = std::max(h, dim < 3 ? std::hypot(b.x - a.x, b.y - a.y) : std::hypot(b.x - a.x, b.y - a.y, b.z - a.z));
       }
   return h;
 }

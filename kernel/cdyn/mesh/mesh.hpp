@@ -1,4 +1,4 @@
-// mesh.hpp — simplicial meshes: intervals (1D), triangles (2D), tetrahedra (3D).
+// mesh/mesh.hpp — simplicial meshes: intervals (1D), triangles (2D), tetrahedra (3D).
 //
 // The seed's triangulation 𝒯^h ("A model problem": a regular mesh of Ω, its vertex
 // set 𝒜 where the constraints act).  A mesh is geometry and topology only: vertex

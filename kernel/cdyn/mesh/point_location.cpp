@@ -1,4 +1,4 @@
-// point_location.cpp — inverse affine maps, cell by cell.
+// mesh/point_location.cpp — inverse affine maps, cell by cell.
 #include "cdyn/mesh/point_location.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// point_location.hpp — finding the cell that contains a point (for probes: the value of
+// mesh/point_location.hpp — finding the cell that contains a point (for probes: the value of
 // u_h at a point is FESpace::value_in_cell at the cell and reference point found here).
 // Not part of the seed's method; geometry only.
 #pragma once

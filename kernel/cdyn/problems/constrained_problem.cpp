@@ -1,5 +1,5 @@
-// constrained_problem.cpp — load with lifting, full-field energy, violation, and the
-// optional change of basis U_f = R U' (see constrained_problem.hpp).
+// problems/constrained_problem.cpp — load with lifting, full-field energy, violation, and the
+// optional change of basis U_f = R U' (see problems/constrained_problem.hpp).
 #include "cdyn/problems/constrained_problem.hpp"
 
 #include <algorithm>

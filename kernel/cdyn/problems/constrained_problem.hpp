@@ -1,4 +1,4 @@
-// constrained_problem.hpp — the semi-discrete constrained problem (seed eq. 16) on
+// problems/constrained_problem.hpp — the semi-discrete constrained problem (seed eq. 16) on
 // the free dofs of W^h, ready for a time scheme:
 //
 //     M Ü + A U = L(t) + Gᵀλ,   G U ≤ α,  λ ≤ 0,  λᵀ(G U − α) = 0,
@@ -8,14 +8,14 @@
 // what is needed for the energy of the FULL field (Dirichlet dofs included):
 //     J = ½ Vᵀ C V + ½ Uᵀ A U − Lᵀ U    (seed, Theorem 2).
 //
-// Optional change of basis (elasticity against an inclined plane, elastic_contact.hpp).
+// Optional change of basis (elasticity against an inclined plane, problems/elastic_contact.hpp).
 // A bound acts on ONE unknown, but the Signorini condition n·u(a) ≥ g(a) acts on a
 // combination of u_x and u_y.  The problem may therefore carry an orthogonal,
-// block-diagonal R on the free dofs (qp_rotation.hpp: 2 × 2 blocks [n t] at the contact
+// block-diagonal R on the free dofs (problems/nodal_rotation.hpp: 2 × 2 blocks [n t] at the contact
 // nodes, identity elsewhere) and then its unknowns are the rotated components
 //     U' = Rᵀ U_f    (normal n·u and tangential t·u at the contact nodes),
 // with A = Rᵀ A_ff R, load = Rᵀ (L − A U_D)_f, the mass model seeing R
-// (mass_rotated.hpp), and lower/upper/constrained naming rotated unknowns.  R is
+// (mass/rotated.hpp), and lower/upper/constrained naming rotated unknowns.  R is
 // orthogonal, so J and every scheme's algebra are unchanged: the schemes use only A,
 // load(t), mass, the bounds, full() and potential_energy(), and never know about R.
 // Without R (the scalar problems, axis-aligned planes) U' = U_f and nothing changes.

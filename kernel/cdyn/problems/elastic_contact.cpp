@@ -1,5 +1,5 @@
-// elastic_contact.cpp — assembling the plane-strain Signorini problem on the free dofs
-// (see elastic_contact.hpp for the equations and the contact convention).
+// problems/elastic_contact.cpp — assembling the plane-strain Signorini problem on the free dofs
+// (see problems/elastic_contact.hpp for the equations and the contact convention).
 #include "cdyn/problems/elastic_contact.hpp"
 
 #include <cmath>
@@ -127,7 +127,7 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
     }
 
   // Redistributed mass: both components of each contact node are massless, so every
-  // normal N_i is in Ker M whatever its direction (mass_model.hpp).
+  // normal N_i is in Ker M whatever its direction (mass/mass_model.hpp).
   std::unique_ptr<MassModel> mass = make_mass_model(W, *p.bc, d.mass, d.rho, contact.contact_dofs);
 
   if (contact.rotation.nodes.empty()) {

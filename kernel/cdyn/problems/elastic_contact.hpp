@@ -1,5 +1,5 @@
-// elastic_contact.hpp — the elastodynamic Signorini problem of the seed (eqs. 1–6) in
-// plane strain, as a ConstrainedProblem (constrained_problem.hpp):
+// problems/elastic_contact.hpp — the elastodynamic Signorini problem of the seed (eqs. 1–6) in
+// plane strain, as a ConstrainedProblem (problems/constrained_problem.hpp):
 //
 //     ρ ü − div σ(u) = f  in Ω,     σ(u) = λ tr ε(u) I + 2μ ε(u)       (1), (2)
 //     σ(u) ν = g_N on Γ_N,   u = u_D on Γ_D,   u(0) = u₀, u̇(0) = u₁     (3)–(5)
@@ -7,7 +7,7 @@
 //
 // Weak form: A_ij = ∫ λ div φ_i div φ_j + 2μ ε(φ_i):ε(φ_j) (assemble_elasticity),
 // L_i = ∫_Ω f·φ_i + ∫_{Γ_N} g_N·φ_i (assemble_load, assemble_boundary_load); the inertia
-// is the chosen pair's M = ρ Bᵀ C⁻¹ B or a classical mass model (mass_model.hpp).
+// is the chosen pair's M = ρ Bᵀ C⁻¹ B or a classical mass model (mass/mass_model.hpp).
 //
 // The rigid plane (convention, docs/elasticity.md).  The plane passes through the point
 // p and n is its unit normal pointing from the obstacle INTO the body's side (the
@@ -20,7 +20,7 @@
 //
 // The constraint acts on the two vertex dofs of each vertex of Γ_C (never on bubbles
 // or edge dofs).  For a normal along an axis the bound falls on u_x or u_y itself;
-// otherwise the problem carries the node-local rotation R (qp_rotation.hpp) and its
+// otherwise the problem carries the node-local rotation R (problems/nodal_rotation.hpp) and its
 // unknowns at the contact nodes are (n·u, t·u), t = (−n_y, n_x).  A vertex whose two
 // components are fixed by Dirichlet conditions is not constrained; one with a single
 // fixed component (a roller) gets the bound on its free component when n has a part

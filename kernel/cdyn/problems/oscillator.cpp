@@ -1,4 +1,4 @@
-// oscillator.cpp — the one-dof system as a one-element bar with the lumped mass.
+// problems/oscillator.cpp — the one-dof system as a one-element bar with the lumped mass.
 #include "cdyn/problems/oscillator.hpp"
 
 #include "cdyn/base/error.hpp"

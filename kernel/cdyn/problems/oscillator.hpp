@@ -1,10 +1,10 @@
-// oscillator.hpp — the seed's one-dof system (slide "Illustration of the non-uniqueness"):
+// problems/oscillator.hpp — the seed's one-dof system (slide "Illustration of the non-uniqueness"):
 //
 //     m ü + k u = F(t) + λ,   u ≥ g,   λ ≥ 0,   λ (u − g) = 0,
 //
 // whose solution after the mass reaches the obstacle is not unique (u = a|cos ωt| for
 // every a ≥ 0 when F = 0, g = 0, u(0) = 1, u̇(0) = 0): the constrained dof carries
-// inertia.  It is built as the smallest member of the bar family (scalar_wave.hpp), so
+// inertia.  It is built as the smallest member of the bar family (problems/scalar_wave.hpp), so
 // that every scheme, solver and output serves it unchanged: one P1 element on [0, 1],
 // clamped at x = 1, with the lumped mass; its free dof (x = 0) has mass ρh/2 = m,
 // stiffness E/h = k and load ∫ f φ = f/2 = F.

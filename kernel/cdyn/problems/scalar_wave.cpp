@@ -1,4 +1,4 @@
-// scalar_wave.cpp — assembling the membrane / bar problem on the free dofs.
+// problems/scalar_wave.cpp — assembling the membrane / bar problem on the free dofs.
 #include "cdyn/problems/scalar_wave.hpp"
 
 #include <limits>

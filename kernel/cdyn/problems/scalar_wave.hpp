@@ -1,12 +1,12 @@
-// scalar_wave.hpp — the scalar constrained wave problems: the seed's membrane with an
+// problems/scalar_wave.hpp — the scalar constrained wave problems: the seed's membrane with an
 // obstacle (Ω the unit square) and the 1D elastic bar with Signorini contact.
 //
 //     ρ ü − κ Δu = f   in Ω,      u = g_D on Γ_D,      u(a_i) ≥ g(a_i) at the
 //     constrained vertices a_i,   u(0) = u₀,  u̇(0) = v₀,
 //
 // κ the tension (membrane) or Young's modulus E (bar, where Δ is d²/dx²).  The weak
-// form gives A = κ ∫∇φ_i·∇φ_j and L = ∫ f φ_i (assembly.hpp); the inertia is the
-// chosen pair's M = ρ Bᵀ C⁻¹ B or a classical mass model (mass_model.hpp).
+// form gives A = κ ∫∇φ_i·∇φ_j and L = ∫ f φ_i (fe/assembly.hpp); the inertia is the
+// chosen pair's M = ρ Bᵀ C⁻¹ B or a classical mass model (mass/mass_model.hpp).
 #pragma once
 
 #include <string>

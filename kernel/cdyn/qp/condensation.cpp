@@ -1,5 +1,5 @@
-// condensation.cpp — S_c = S_vv − S_vb S_bb⁻¹ S_bv and the back-substitution; see
-// condensation.hpp.
+// qp/condensation.cpp — S_c = S_vv − S_vb S_bb⁻¹ S_bv and the back-substitution; see
+// qp/condensation.hpp.
 #include "cdyn/qp/condensation.hpp"
 
 #include <algorithm>

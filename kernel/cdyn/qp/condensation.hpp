@@ -1,7 +1,7 @@
-// condensation.hpp — static condensation of the unbounded unknowns with a diagonal block
+// qp/condensation.hpp — static condensation of the unbounded unknowns with a diagonal block
 // of S (the bubbles of P1+/P0), before the step QP is solved.
 //
-// The step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp.hpp) is split into kept
+// The step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp/bound_qp.hpp) is split into kept
 // unknowns v and condensed unknowns b, where every b carries no bound and S_bb is
 // diagonal.  Then the minimum over X_b is explicit,
 //     X_b = S_bb⁻¹ (r_b − S_bv X_v),                                        (back-substitution)

@@ -1,4 +1,4 @@
-// qp_ipopt.cpp — the step QP through Ipopt's TNLP interface; see qp_ipopt.hpp.
+// ipopt.cpp — the step QP through Ipopt's TNLP interface; see qp/ipopt.hpp.
 #include "cdyn/qp/ipopt.hpp"
 
 #include <coin/IpIpoptApplication.hpp>

@@ -1,4 +1,4 @@
-// qp_ipopt.hpp — the step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp.hpp) solved by
+// ipopt.hpp — the step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp/bound_qp.hpp) solved by
 // Ipopt, a primal-dual interior-point method (Wächter & Biegler, Math. Program. 106
 // (2006) 25–57), through its C++ TNLP interface, MUMPS as the linear solver.
 //
@@ -22,7 +22,7 @@
 // static obstacle Ipopt's own result has kkt_residual 1e-7 … 1e-12 however tight its
 // tol (docs/qp.md).  As interior-point QP codes do, the result is then finished by a
 // crossover: the active set Ipopt identified, and at most 3 steps of PDAS from it
-// (exact sparse solves, qp_pdas.hpp).  QPOptions::ipopt_crossover = false turns it off
+// (exact sparse solves, qp/pdas/pdas.hpp).  QPOptions::ipopt_crossover = false turns it off
 // (Ipopt's result then stands or falls alone); last() tells what Ipopt reached by itself.
 // Still above tol: NumericalError.
 //

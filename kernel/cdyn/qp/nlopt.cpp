@@ -1,5 +1,5 @@
-// qp_nlopt.cpp — the step QP by NLopt's bound-constrained L-BFGS (or CCSAQ), matrix-free,
-// with an active-set polishing; see qp_nlopt.hpp.
+// nlopt.cpp — the step QP by NLopt's bound-constrained L-BFGS (or CCSAQ), matrix-free,
+// with an active-set polishing; see qp/nlopt.hpp.
 #include "cdyn/qp/nlopt.hpp"
 
 #include <nlopt.h>

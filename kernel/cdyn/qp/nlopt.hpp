@@ -1,4 +1,4 @@
-// qp_nlopt.hpp — the step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp.hpp) by a
+// nlopt.hpp — the step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp/bound_qp.hpp) by a
 // bound-constrained gradient method of NLopt: LD_LBFGS (Lukšan's limited-memory BFGS,
 // Nocedal, Math. Comp. 35 (1980) 773–782, with bounds) or LD_CCSAQ (Svanberg, SIAM J.
 // Optim. 12 (2002) 555–573), chosen by QPOptions::nlopt_algorithm.
@@ -11,7 +11,7 @@
 // Stopping: each evaluation computes the common KKT residual; NLopt is stopped as soon
 // as it is ≤ tol.  If NLopt stops before (its own tolerances, round-off), the result is
 // polished, at most QPOptions::nlopt_polish_rounds times: the active set is identified
-// by the PDAS rule of qp_pdas.hpp from (X, λ), the active unknowns are put on their
+// by the PDAS rule of qp/pdas/pdas.hpp from (X, λ), the active unknowns are put on their
 // bounds and S_II X_I = r_I − S_IA X_A is solved by Jacobi-preconditioned conjugate
 // gradients (matrix-free too).  Still above tol after that: NumericalError.
 // iterations: products with S (NLopt evaluations + CG iterations); default

@@ -1,4 +1,4 @@
-// qp_pgs.cpp — projected Gauss–Seidel / SOR (Cryer 1971); see qp_pgs.hpp.
+// pgs.cpp — projected Gauss–Seidel / SOR (Cryer 1971); see qp/pgs.hpp.
 #include "cdyn/qp/pgs.hpp"
 
 #include <algorithm>

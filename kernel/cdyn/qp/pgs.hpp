@@ -1,5 +1,5 @@
-// qp_pgs.hpp — projected Gauss–Seidel with over-relaxation (projected SOR) for the step
-// QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp.hpp).
+// pgs.hpp — projected Gauss–Seidel with over-relaxation (projected SOR) for the step
+// QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp/bound_qp.hpp).
 //
 // Cryer, "The solution of a quadratic programming problem using systematic
 // overrelaxation", SIAM J. Control 9 (1971) 385–392.  One sweep visits i = 0 … n−1:

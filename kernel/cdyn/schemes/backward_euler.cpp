@@ -1,4 +1,4 @@
-// scheme_backward_euler.cpp — backward Euler on the seed's mixed form (eq. 10):
+// backward_euler.cpp — backward Euler on the seed's mixed form (eq. 10):
 //
 //   Bᵀ (V^{n+1} − Vⁿ)/dt + A U^{n+1} = L^{n+1} + Gᵀλ,   C V^{n+1} = B (U^{n+1} − Uⁿ)/dt.
 //

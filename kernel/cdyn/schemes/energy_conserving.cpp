@@ -1,4 +1,4 @@
-// scheme_energy_conserving.cpp — the seed's energy-conserving three-level scheme, with
+// energy_conserving.cpp — the seed's energy-conserving three-level scheme, with
 // the contact condition written on the velocity (seed, slide "An energy conserving
 // scheme"; docs/schemes.md):
 //

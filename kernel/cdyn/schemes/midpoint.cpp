@@ -1,4 +1,4 @@
-// scheme_midpoint.cpp — the midpoint rule on the seed's mixed form (eq. 10), with the
+// midpoint.cpp — the midpoint rule on the seed's mixed form (eq. 10), with the
 // constraint either on the half step (as in the seed's experiments) or at the end:
 //
 //   Bᵀ (V^{n+1} − Vⁿ)/dt + A U^{n+½} = L^{n+½} + Gᵀλ,   C V^{n+½} = B (U^{n+1} − Uⁿ)/dt,

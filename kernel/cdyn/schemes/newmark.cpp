@@ -1,13 +1,14 @@
-// scheme_newmark.cpp — Newmark's (β, γ) scheme in momentum form, so that a singular M
-// (mixed pairs, redistributed mass) is allowed (docs/schemes.md):
+// newmark.cpp — Newmark's (β, γ) scheme in momentum form, so that a singular M (mixed
+// pairs, redistributed mass) is allowed (docs/schemes.md):
 //
-//   C⁻¹B U^{n+1} = C⁻¹B Uⁿ + dt Vⁿ + dt² [(½ − β) Aⁿ + β A^{n+1}],        (N1)
-//   V^{n+1}      = Vⁿ + dt [(1 − γ) Aⁿ + γ A^{n+1}],                       (N2)
-//   Bᵀ A^{n+1} + A U^{n+1} = L^{n+1} + Gᵀλ^{n+1},                          (N3)
+//   C⁻¹B U^{n+1} = C⁻¹B Uⁿ + dt Vⁿ + dt² [(½ − β) V̇ⁿ + β V̇^{n+1}],        (N1)
+//   V^{n+1}      = Vⁿ + dt [(1 − γ) V̇ⁿ + γ V̇^{n+1}],                       (N2)
+//   Bᵀ V̇^{n+1} + A U^{n+1} = L^{n+1} + Gᵀλ^{n+1},                          (N3)
 //
-// with V, A the velocity and acceleration in H^h (Bᵀ A = M Ü is the inertia force of
-// seed eq. 16).  Eliminating A^{n+1} gives the QP for X = U^{n+1}, c = 1/dt:
-//   S = M c²/β + A,   r = M Uⁿ c²/β + Bᵀ (Vⁿ c/β + (½ − β)/β Aⁿ) + L^{n+1}.
+// with V the velocity and V̇ the acceleration, both in H^h (Bᵀ V̇ = M Ü is the inertia
+// force of seed eq. 16; A is the stiffness, as everywhere).  Eliminating V̇^{n+1} gives
+// the QP for X = U^{n+1}, c = 1/dt:
+//   S = M c²/β + A,   r = M Uⁿ c²/β + Bᵀ (Vⁿ c/β + (½ − β)/β V̇ⁿ) + L^{n+1}.
 // β = ¼, γ = ½ (the default, the trapezoidal rule) conserves J without contact.
 #include <cmath>
 
@@ -27,16 +28,16 @@ class Newmark final : public StepQPScheme {
 
   StepStats step(State& s) override {
     const double c = 1.0 / dt_, b = beta_;
-    // A⁰ from (N3) at t = 0 with λ⁰ = 0: Bᵀ A⁰ = L⁰ − A U⁰.
-    if (Acc_.size() == 0) Acc_ = p_.mass->acceleration(p_.load(s.t) - p_.A * s.U);
+    // V̇⁰ from (N3) at t = 0 with λ⁰ = 0: Bᵀ V̇⁰ = L⁰ − A U⁰.
+    if (Vdot_.size() == 0) Vdot_ = p_.mass->acceleration(p_.load(s.t) - p_.A * s.U);
     StepStats stats;
-    const Eigen::VectorXd r =  // (c²/β) M Uⁿ + Bᵀ((c/β) Vⁿ + ((½ − β)/β) Aⁿ) + L
-        inertia(c * c / b, s.U, 1.0, (c / b) * s.V + ((0.5 - b) / b) * Acc_) + p_.load(s.t + dt_);
+    const Eigen::VectorXd r =  // (c²/β) M Uⁿ + Bᵀ((c/β) Vⁿ + ((½ − β)/β) V̇ⁿ) + L
+        inertia(c * c / b, s.U, 1.0, (c / b) * s.V + ((0.5 - b) / b) * Vdot_) + p_.load(s.t + dt_);
     const Eigen::VectorXd U1 = solve(r, s, stats);
-    // (N1) for A^{n+1}, then (N2) for V^{n+1}.
-    const Eigen::VectorXd Acc1 = (p_.mass->velocity(c * c * (U1 - s.U)) - c * s.V - (0.5 - b) * Acc_) / b;
-    s.V += dt_ * ((1.0 - gamma_) * Acc_ + gamma_ * Acc1);
-    Acc_ = Acc1;
+    // (N1) for V̇^{n+1}, then (N2) for V^{n+1}.
+    const Eigen::VectorXd Vdot1 = (p_.mass->velocity(c * c * (U1 - s.U)) - c * s.V - (0.5 - b) * Vdot_) / b;
+    s.V += dt_ * ((1.0 - gamma_) * Vdot_ + gamma_ * Vdot1);
+    Vdot_ = Vdot1;
     s.U = U1;
     s.t += dt_;
     return stats;
@@ -44,7 +45,7 @@ class Newmark final : public StepQPScheme {
 
  private:
   double beta_, gamma_;
-  Eigen::VectorXd Acc_;  // Aⁿ, the acceleration in H^h (empty before the first step)
+  Eigen::VectorXd Vdot_;  // V̇ⁿ, the acceleration in H^h (empty before the first step)
 };
 
 }  // namespace

@@ -1,4 +1,4 @@
-// scheme_paoli_schatzman.cpp — the explicit Paoli–Schatzman scheme with restitution
+// paoli_schatzman.cpp — the explicit Paoli–Schatzman scheme with restitution
 // coefficient e (seed, slide "Paoli Schatzman scheme"; docs/schemes.md):
 //
 //   U^{n+1} = −e U^{n−1} + (1 + e) P_K(Yⁿ),

@@ -1,4 +1,4 @@
-// implicit_step.cpp — the step QP S = aA + kM, built once and solved with warm starts.
+// step_qp_scheme.cpp — the step QP S = aA + kM, built once and solved with warm starts.
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// implicit_step.hpp — what the one-step implicit schemes share.
+// step_qp_scheme.hpp — what the one-step implicit schemes share.
 //
 // Backward Euler and the two midpoint variants all solve, per step, a QP with
 //     S = a A + k M,   k = m / dt²,
@@ -7,7 +7,7 @@
 // classical models, and H^h = W^h where B = C gives M = C — in saddle form otherwise), keeps the step solver's warm start, and provides M·x for the right-hand
 // sides.
 //
-// Static condensation (condensation.hpp).  With an explicit S, the unbounded unknowns
+// Static condensation (qp/condensation.hpp).  With an explicit S, the unbounded unknowns
 // whose block of S is diagonal and whose elimination makes no fill — the bubbles of
 // P1+/P0 — are eliminated once, when S is built: the solver sees the QP on the kept
 // unknowns, S_c = S_vv − S_vb S_bb⁻¹ S_bv, r_c = r_v − S_vb S_bb⁻¹ r_b, and each step ends

@@ -1,4 +1,4 @@
-// time_scheme.cpp — choosing a scheme by name; the initial velocity.
+// schemes/time_scheme.cpp — choosing a scheme by name; the initial velocity.
 #include "cdyn/schemes/time_scheme.hpp"
 
 #include "cdyn/base/error.hpp"

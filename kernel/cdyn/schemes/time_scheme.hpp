@@ -1,4 +1,4 @@
-// time_scheme.hpp — time integration of the semi-discrete constrained problem.
+// schemes/time_scheme.hpp — time integration of the semi-discrete constrained problem.
 //
 // Every implicit scheme (docs/schemes.md; a time-discrete seed eq. 16) advances (U, V) by one QP
 //     min ½ XᵀSX − rᵀX  over  lower ≤ X ≤ upper,
@@ -59,7 +59,7 @@ class TimeScheme {
 struct SchemeParameters {
   double beta = 0.25, gamma = 0.5;  // newmark (the trapezoidal rule by default)
   double restitution = 0.0;         // paoli_schatzman's e ∈ [0, 1]
-  bool condense = true;             // the implicit schemes: eliminate the bubbles (implicit_step.hpp)
+  bool condense = true;             // the implicit schemes: eliminate the bubbles (schemes/step_qp_scheme.hpp)
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |

@@ -1,4 +1,4 @@
-// wellposedness.cpp — β = σ_min(G Z) of condition (12) by dense orthogonal factorizations.
+// condition12.cpp — β = σ_min(G Z) of condition (12) by dense orthogonal factorizations.
 #include "cdyn/wellposedness/condition12.hpp"
 
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-// wellposedness.hpp — condition (12) of the seed: the constraints must act
+// condition12.hpp — condition (12) of the seed: the constraints must act
 // independently on the inertia-free displacements F = Ker B,
 //
 //     β = inf_{Q ∈ R^{N_g}} sup_{W ∈ F} QᵀGW / (|Q||W|) = σ_min(G Z)  > 0,        (12)

@@ -1,5 +1,5 @@
-// qp_pdas.cpp — primal-dual active set (Hintermüller–Ito–Kunisch 2002) with a projected
-// Newton fallback (Bertsekas 1982); see qp_pdas.hpp.
+// pdas.cpp — primal-dual active set (Hintermüller–Ito–Kunisch 2002) with a projected
+// Newton fallback (Bertsekas 1982); see qp/pdas/pdas.hpp.
 #include "cdyn/qp/pdas/pdas.hpp"
 
 #include <Eigen/UmfPackSupport>
@@ -281,7 +281,7 @@ struct PDASSolver::Impl {
 
   // Solves S̃ y = top (explicit S), or K̃ [y; z] = [top; bottom] (saddle form).
   // CG (when the factor is not that of the active set) stops at the Jacobi-scaled
-  // residual cg_tol (masked_cg.hpp); the factor solves to round-off.
+  // residual cg_tol (linalg/masked_cg.hpp); the factor solves to round-off.
   Eigen::VectorXd solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd* bottom, double cg_tol) {
     ++counters.solves;
     last_cg_residual = 0.0;

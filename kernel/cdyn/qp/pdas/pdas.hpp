@@ -1,5 +1,5 @@
-// qp_pdas.hpp — the primal-dual active set method (a semismooth Newton method) for the
-// step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp.hpp).  The default step solver.
+// pdas.hpp — the primal-dual active set method (a semismooth Newton method) for the
+// step QP  min ½ XᵀSX − rᵀX,  lower ≤ X ≤ upper  (qp/bound_qp.hpp).  The default step solver.
 //
 // Hintermüller, Ito & Kunisch, "The primal-dual active set strategy as a semismooth
 // Newton method", SIAM J. Optim. 13 (2002) 865–888.  With λ = S X − r and D = diag(S),
@@ -23,7 +23,7 @@
 //     factor by cholmod_rowdel / cholmod_rowadd instead of refactorizing;
 //     before any of that, a system whose active set differs from the factorized one
 //     is solved by CG on S̃, preconditioned by multicolour symmetric Gauss–Seidel
-//     (masked_cg.hpp, QPOptions::pdas_cg_iterations) when that costs fewer flops than
+//     (linalg/masked_cg.hpp, QPOptions::pdas_cg_iterations) when that costs fewer flops than
 //     the row updates: for a well-conditioned S (the condensed P1+/P0 step matrix) a CG
 //     iteration costs a seventh of a forward/back solve, against a factorization (≈ 15 solves) or
 //     hundreds of row updates (≈ 0.1 solve each) when the contact zone jumps; the
