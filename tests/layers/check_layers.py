@@ -7,6 +7,8 @@ flows: scene → mesh → spaces → matrices A, B, C, L → mass model and cons
 ALLOWED lists for it (the same table is in docs/kernel_map.md).  The QP solvers, for
 instance, see only S, r and the bounds: qp/ may not include schemes/, problems/ or mesh/.
 
+The umbrella header cdyn/cdyn.hpp must include every header of the stages.
+
 Usage: check_layers.py KERNEL_DIR    (exit 1 and one line per offending include)
 """
 import pathlib
@@ -60,6 +62,13 @@ def main() -> int:
                 continue
             why = "a flat include path (use the stage folder)" if not to else f"{stage}/ may not include {to}/"
             errors.append(f"{rel}:{number}: #include <cdyn/{target}>: {why}")
+    umbrella = root / UMBRELLA
+    if umbrella.exists():
+        included = {m.group(1) for line in umbrella.read_text(encoding="utf-8").splitlines() if (m := INCLUDE.match(line))}
+        for path in files:
+            rel = path.relative_to(root).as_posix()
+            if path.suffix == ".hpp" and rel != UMBRELLA and rel not in included:
+                errors.append(f"{UMBRELLA}: does not include <cdyn/{rel}>")
     for e in errors:
         print(e)
     print(f"check_layers: {len(files)} files, {len(errors)} include(s) against the data flow")

@@ -9,6 +9,7 @@
 //   cdyn::io       a FieldsWriter series of the initial state.
 //
 // Usage: outside LSHAPE.geo OUTDIR
+#include <cdyn/cdyn.hpp>  // the umbrella header (below: the flat paths of 0.1, forwarding)
 #include <cdyn/fields_output.hpp>
 #include <cdyn/gmsh_mesh.hpp>
 #include <cdyn/mesh.hpp>
