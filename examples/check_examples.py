@@ -52,6 +52,26 @@ def cdyn_run(cdyn, out, scene=None, sets=()):
     return history, summary
 
 
+def check_energy_trace(text, history, expected_rows, tol):
+    """Checks the rows `step t E_kin E_pot J active` an example prints against
+    history.csv: expected_rows of them, E_kin, E_pot and J within tol·J0, the same
+    active counts."""
+    J0 = float(history[0]["E_total"])
+    rows, worst, active = 0, 0.0, []
+    for line in text.splitlines():
+        f = line.split()
+        if len(f) == 6 and f[0].isdigit():
+            h = history[int(f[0])]
+            for col, name in ((2, "E_kin"), (3, "E_pot"), (4, "E_total")):
+                worst = max(worst, abs(float(f[col]) - float(h[name])) / abs(J0))
+            if int(f[5]) != int(h["active"]):
+                active.append(int(f[0]))
+            rows += 1
+    check(rows == expected_rows and worst <= tol and not active,
+          f"energy trace: {rows} rows ({expected_rows} expected) as `cdyn run` history.csv to {tol:g} J0 "
+          f"(largest difference {worst:.1e}; active differs at steps {active})")
+
+
 # Where an example and `cdyn run` make the same kernel calls in the same order, the
 # numbers are equal to the last bit (measured); 1e-13 relative leaves room for the
 # compiler contracting a product differently in the two programs, and is 100 times
@@ -95,19 +115,7 @@ def example1(exe, cdyn, src, work):
 def example2(exe, cdyn, src, work):
     text = run([exe])
     history, summary = cdyn_run(cdyn, os.path.join(work, "run"), sets=("mesh.n=10", "output.fields=false"))
-    J0 = float(history[0]["E_total"])
-    compared = 0
-    for line in text.splitlines():
-        f = line.split()
-        if len(f) == 6 and f[0].isdigit():
-            h = history[int(f[0])]
-            for col, name in ((2, "E_kin"), (3, "E_pot"), (4, "E_total")):
-                if abs(float(f[col]) - float(h[name])) > SAME_CALLS * J0:
-                    check(False, f"step {f[0]}: {name} {f[col]} vs history.csv {h[name]}")
-            if int(f[5]) != int(h["active"]):
-                check(False, f"step {f[0]}: active {f[5]} vs history.csv {h['active']}")
-            compared += 1
-    check(compared == 21, f"energy trace: 21 rows (every 40 steps of 800) equal to `cdyn run` history.csv, got {compared}")
+    check_energy_trace(text, history, 21, SAME_CALLS)  # every 40 steps of 800
     m = re.search(r"\|J\(T\) - J0\|/\|J0\| = (\S+), max over t of \|J - J0\|/\|J0\| = (\S+)", text)
     check(m is not None, "the energy balance line")
     close(float(m.group(2)), summary["E_rel_drift"], 1e-3, "max drift as summary.json E_rel_drift (4 printed digits)")
@@ -192,12 +200,45 @@ def example5(exe, cdyn, src, work):
     check(same, "every VTU file identical to the one of `cdyn run`")
 
 
+# Example 6 steps the seed's membrane by hand and `cdyn run` through the kernel's scheme:
+# the same QPs at the same KKT tolerance 1e-12, but cdyn condenses the bubbles out and
+# PDAS may solve the condensed systems by CG, and r is formed by another route, so the
+# two agree to the solver's tolerance, not to the bit.  Measured over all 800 steps
+# (every step printed, against history.csv): max |J_ex6 - J_cdyn|/J0 = 8.5e-11 (step
+# 277, in the first impact; 6.5e-13 before it, 2e-12 between impacts), E_kin 6.5e-12,
+# E_pot 8.8e-11; the active counts equal at every step.  1e-9 is 12x above that, the
+# bound example 4 puts on two solvers at one tolerance, and 7 decades below the 1.2e-2
+# the impacts move J.  (With the solver's default tolerance 1e-10 in ex6 the difference
+# measured 7.6e-9: the program must use the scene's 1e-12.)
+BY_HAND = 1e-9
+
+
+def example6(exe, cdyn, src, work):
+    text = run([exe])
+    history, summary = cdyn_run(cdyn, os.path.join(work, "run"), sets=("mesh.n=10", "output.fields=false"))
+    m = re.search(r"N_W = (\d+) free dofs .*, N_H = (\d+) cells", text)
+    check(m is not None and (int(m.group(1)), int(m.group(2))) == (summary["n_free"], summary["n_velocity"]),
+          "N_W and N_H as summary.json n_free, n_velocity")
+    wp = summary["wellposed"]
+    m = re.search(r"rank B = (\d+), dim Ker B = N_W - rank B = (\d+)", text)
+    check(m is not None and int(m.group(2)) == wp["dim_ker_B"] == wp["n_g"] > 0,
+          f"dim Ker B = {wp['dim_ker_B']} (summary.json wellposed), one direction per constraint: M singular")
+    m = re.search(r"\|Mz\| = (\S+),", text)
+    check(m is not None and float(m.group(1)) < 1e-15, "the hand-made z is in Ker M (|Mz| < 1e-15, z of size 1)")
+    check_energy_trace(text, history, 9, BY_HAND)  # every 100 steps of 800
+    m = re.search(r"max over t of \|J - J0\|/\|J0\| = (\S+), max violation of u\(a\) >= 0 .* = (\S+)", text)
+    check(m is not None, "the energy balance line")
+    # 4 printed digits.
+    close(float(m.group(1)), summary["E_rel_drift"], 1e-3, "max drift as summary.json E_rel_drift")
+    close(float(m.group(2)), summary["max_violation"], 1e-3, "max violation as summary.json max_violation")
+
+
 if __name__ == "__main__":
     if len(sys.argv) != 6:
         sys.exit(__doc__)
     number, exe, cdyn, src, work = sys.argv[1:]
     os.makedirs(work, exist_ok=True)
-    {"1": example1, "2": example2, "3": example3, "4": example4, "5": example5}[number](exe, cdyn, src, work)
+    {"1": example1, "2": example2, "3": example3, "4": example4, "5": example5, "6": example6}[number](exe, cdyn, src, work)
     if failures:
         print(f"{len(failures)} check(s) failed", file=sys.stderr)
         sys.exit(1)
