@@ -455,6 +455,28 @@ TEST(ElasticContact, ConditionTwelveWithNormalConstraints) {
   }
 }
 
+namespace {
+
+// A free block (no Dirichlet part) on the 30° plane under gravity along −n, from rest
+// and touching, damped to its static equilibrium by 150 large backward Euler steps.
+State settle_resting_block(const ConstrainedProblem& p) {
+  auto solver = make_step_solver("pdas", tight());
+  auto scheme = make_time_scheme("backward_euler", p, *solver, 0.5);
+  State s;
+  s.U = Eigen::VectorXd::Zero(p.n_free());
+  s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
+  for (int k = 0; k < 150; ++k) scheme->step(s);
+  return s;
+}
+
+ElasticContactData resting_block(const Mesh& mesh, const Method& m) {
+  ElasticContactData d = hanging_block(mesh, kTheta, m, true);
+  d.dirichlet_parts.clear();
+  return d;
+}
+
+}  // namespace
+
 TEST(ElasticContact, RestingBlockCarriesItsWeight) {
   // A free block (no Dirichlet part) on the 30° plane under gravity along −n, from rest
   // and touching.  Backward Euler with a large step damps it to the static equilibrium
@@ -464,15 +486,8 @@ TEST(ElasticContact, RestingBlockCarriesItsWeight) {
   // λ = −reaction ≤ 0), and the tangential ones vanish (frictionless).
   const Mesh mesh = block(4, kTheta, 0.0);
   for (const Method& m : {Method{Element::P1Bubble, "P0"}, Method{Element::P2, "P1"}, Method{Element::P1, "lumped"}}) {
-    ElasticContactData d = hanging_block(mesh, kTheta, m, true);
-    d.dirichlet_parts.clear();
-    const ConstrainedProblem p = build_elastic_contact(mesh, d);
-    auto solver = make_step_solver("pdas", tight());
-    auto scheme = make_time_scheme("backward_euler", p, *solver, 0.5);
-    State s;
-    s.U = Eigen::VectorXd::Zero(p.n_free());
-    s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
-    for (int k = 0; k < 150; ++k) scheme->step(s);
+    const ConstrainedProblem p = build_elastic_contact(mesh, resting_block(mesh, m));
+    const State s = settle_resting_block(p);
     const Eigen::VectorXd force = p.global(s.reaction);  // Cartesian, on the free dofs
     double fx = 0.0, fy = 0.0;
     for (Eigen::Index i = 0; i < force.size(); i += 2) {
@@ -500,15 +515,9 @@ TEST(ElasticContact, PostProcessingInTheMeshFrame) {
   // unknowns there are rotated components), the total normal force the weight
   // (Σ F_N = ρ g |Ω|), and the pressures integrating to it (Σ p(a) w(a) = Σ F_N).
   const Mesh mesh = block(4, kTheta, 0.0);
-  ElasticContactData d = hanging_block(mesh, kTheta, Method{Element::P1Bubble, "P0"}, true);
-  d.dirichlet_parts.clear();
+  const ElasticContactData d = resting_block(mesh, Method{Element::P1Bubble, "P0"});
   const ConstrainedProblem p = build_elastic_contact(mesh, d);
-  auto solver = make_step_solver("pdas", tight());
-  auto scheme = make_time_scheme("backward_euler", p, *solver, 0.5);
-  State s;
-  s.U = Eigen::VectorXd::Zero(p.n_free());
-  s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
-  for (int k = 0; k < 150; ++k) scheme->step(s);
+  const State s = settle_resting_block(p);
 
   const Eigen::VectorXd force = reaction_xy(p, s.reaction);
   ASSERT_TRUE(p.R.has_value());
