@@ -1,0 +1,237 @@
+// explicit_reduced_system.cpp — S̃ X = b̃ for an explicit S by a kept CHOLMOD factor,
+// row updates (Davis & Hager 2005) and masked CG; see explicit_reduced_system.hpp.
+#include "cdyn/qp/pdas/explicit_reduced_system.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+namespace {
+
+// True if every column j < n of M stores its diagonal entry.
+bool has_diagonal(const SparseMatrix& M, int n) {
+  for (int j = 0; j < n; ++j) {
+    bool found = false;
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) found = found || it.row() == j;
+    if (!found) return false;
+  }
+  return true;
+}
+
+// Adds the wall time of its scope to a counter (PDASCounters' *_s).
+class ScopeTimer {
+ public:
+  explicit ScopeTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
+  ~ScopeTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& seconds_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+ExplicitReducedSystem::ExplicitReducedSystem(const QPOptions& options, PDASCounters& counters)
+    : opt_(options), counters_(counters) {}
+
+void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
+  n_ = qp.size();
+  ++calls_;
+  if (!new_matrices && chol_.factorized()) return;
+  if (same_matrix(qp.S, S_) && chol_.factorized()) return;
+  S_ = qp.S;
+  S_.makeCompressed();
+  if (!has_diagonal(S_, n_)) throw NumericalError("pdas: S has a zero diagonal entry: it is not positive definite");
+  if (!chol_.analyzed_for(S_)) {
+    chol_.analyze(S_);
+    ++counters_.analyses;
+    update_flops_ = 0.0;
+    updates_measured_ = 0;
+  }
+  S_tilde_ = S_;
+  factorize(S_, "S is not positive definite (CHOLMOD: the factorization breaks down");
+  factor_held_.assign(n_, 0);
+  updates_since_factorization_ = 0;
+  cg_mode_ = cg_failed_ = false;
+  cg_since_sync_ = 0;
+  cg_.reset();
+  if (opt_.pdas_cg_iterations > 0) cg_.emplace(S_);  // (references the member S_)
+}
+
+// A numeric factorization of `matrix` (timed, counted); NumericalError "pdas: <what> at
+// unknown i)" if CHOLMOD finds it not positive definite.
+void ExplicitReducedSystem::factorize(const SparseMatrix& matrix, const std::string& what) {
+  ScopeTimer timer(counters_.factorization_s);
+  const int minor = chol_.factorize(matrix);
+  ++counters_.factorizations;
+  if (minor >= 0) throw NumericalError("pdas: " + what + " at unknown " + std::to_string(minor) + ")");
+}
+
+void ExplicitReducedSystem::refactorize(const HeldSet& held) {
+  replace_held_by_identity(S_, held, S_tilde_);
+  factorize(S_tilde_, "the reduced matrix S_II is not positive definite (breakdown");
+  factor_held_ = held;
+  updates_since_factorization_ = 0;
+  cg_mode_ = false;
+  cg_since_sync_ = 0;
+}
+
+// Brings the factor to `held` (row updates or a refactorization), leaving CG mode.
+void ExplicitReducedSystem::sync_factor(const HeldSet& held) {
+  cg_mode_ = false;
+  std::vector<int> to_delete, to_add;
+  for (int i = 0; i < n_; ++i)
+    if (held[i] != factor_held_[i]) (held[i] ? to_delete : to_add).push_back(i);
+  const int changes = static_cast<int>(to_delete.size() + to_add.size());
+  if (changes == 0) return;
+  if (changes > update_limit()) return refactorize(held);
+  ScopeTimer timer(counters_.row_update_s);
+  for (int i : to_delete) {
+    chol_.replace_by_identity(i);
+    update_flops_ += chol_.modification_flops();
+    factor_held_[i] = 1;
+  }
+  std::vector<char> keep(n_);
+  for (int i = 0; i < n_; ++i) keep[i] = !factor_held_[i];
+  for (int i : to_add) {
+    keep[i] = 1;
+    if (!chol_.restore(i, S_, keep)) return refactorize(held);  // round-off: start afresh
+    update_flops_ += chol_.modification_flops();
+    factor_held_[i] = 0;
+  }
+  updates_measured_ += changes;
+  counters_.row_updates += changes;
+  updates_since_factorization_ += changes;
+  cg_since_sync_ = 0;
+}
+
+// Row updates beyond this many changes cost more than a factorization: measured on the
+// obstacle (docs/performance.md), one row update costs 1/300 to 1/600 of a
+// factorization from 6k to 100k unknowns, and the break-even grows with the size.
+int ExplicitReducedSystem::update_limit() const {
+  return opt_.pdas_update_limit >= 0 ? opt_.pdas_update_limit : std::max(300, n_ / 100);
+}
+
+// Whether the factor should now be brought to `held` although CG would do: when the
+// active set has settled — used by the last kSettled calls in a row (while the contact
+// zone chatters, each set serves at most two: the last solves of a step and the first of
+// the next) — so that the coming steps are one forward/back solve each again; or after
+// pdas_cg_resync CG iterations since the last sync, if set.
+bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
+  constexpr int kSettled = 3;
+  if (opt_.pdas_cg_resync >= 0 && cg_since_sync_ >= opt_.pdas_cg_resync) return true;
+  return cg_mode_ && held == cg_held_ && cg_held_call_ != calls_ && cg_mode_uses_ + 1 >= kSettled;
+}
+
+// Whether a CG solve is expected to cost less than bringing the factor to `held`.
+// Beyond update_limit() changes the alternative is a refactorization (≈ 30 solves): CG.
+// Otherwise it is one row update per changed unknown, whose cost CHOLMOD counts (modfl,
+// mean over the updates done so far on this pattern), against a CG solve of (mean
+// iterations so far, 50 before any) × (2 nnz(S) + 12 n) flops: the product with S and
+// the five vector updates of an iteration.  Both are memory-bound sparse loops, so flops
+// compare their times to within a small factor (docs/performance.md (a): at n = 80 small
+// changes go to row updates, at n = 160 the contact jumps go to CG).  Before any update
+// is measured, CG: the first resync measures one.  Deterministic: flop counts, not
+// clocks, so a run repeats exactly.
+bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
+  int changes = 0;
+  for (int i = 0; i < n_; ++i) changes += held[i] != factor_held_[i];
+  if (changes > update_limit() || updates_measured_ == 0) return true;
+  const double iterations = counters_.cg_solves > 0 ? double(counters_.cg_iterations) / counters_.cg_solves : 50.0;
+  const double cg_flops = iterations * (2.0 * double(S_.nonZeros()) + 12.0 * n_);
+  return changes * (update_flops_ / updates_measured_) > cg_flops;
+}
+
+void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
+  if (fresh || !chol_.factorized()) return refactorize(held);
+  if (held == factor_held_) {
+    cg_mode_ = false;
+    return;
+  }
+  if (cg_ && !cg_failed_ && !resync_due(held) && cg_pays(held)) {
+    if (!(cg_mode_ && held == cg_held_))
+      cg_mode_uses_ = 1;
+    else if (cg_held_call_ != calls_)
+      ++cg_mode_uses_;
+    cg_held_call_ = calls_;
+    cg_mode_ = true;  // the factor stays as it is; solve_tilde runs CG
+    cg_held_ = held;
+    return;
+  }
+  sync_factor(held);
+}
+
+// Solves S̃ y = b: by CG when the factor is not that of the held set (stopping at the
+// Jacobi-scaled residual cg_tol, masked_cg.hpp), else by the factor (to round-off).
+Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, double cg_tol) {
+  ++counters_.solves;
+  last_cg_residual_ = 0.0;
+  const bool resume = resume_cg_ && last_by_cg_;
+  resume_cg_ = last_by_cg_ = false;
+  if (cg_mode_) {
+    // From the last solution (the previous PDAS iterate or step: the systems differ in a
+    // few rows and the right-hand side by O(dt)).
+    Eigen::VectorXd y = y_last_;
+    MaskedCGResult run;
+    {
+      ScopeTimer timer(counters_.cg_s);
+      run = cg_->solve(cg_held_, b, y, cg_tol, opt_.pdas_cg_iterations, resume);
+    }
+    counters_.cg_iterations += run.iterations;
+    cg_since_sync_ += run.iterations;
+    if (run.converged) {
+      ++counters_.cg_solves;
+      last_cg_residual_ = run.scaled_residual;
+      last_by_cg_ = true;
+      y_last_ = y;
+      return y;
+    }
+    cg_failed_ = true;  // S̃ not well conditioned enough: the factor from now on
+    sync_factor(cg_held_);
+  }
+  ScopeTimer timer(counters_.solve_s);
+  y_last_ = chol_.solve(b);
+  return y_last_;
+}
+
+Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const HeldSet& held,
+                                                   const Eigen::VectorXd& value, double tol) {
+  set_held(held);
+  Eigen::VectorXd b = qp.r;  // b̃_I = r_I − S_IA X_A, b̃_A = X_A
+  for (int j = 0; j < n_; ++j)
+    if (held[j])
+      for (SparseMatrix::InnerIterator it(S_, j); it; ++it) b[it.row()] -= it.value() * value[j];
+  for (int j = 0; j < n_; ++j)
+    if (held[j]) b[j] = value[j];
+  Eigen::VectorXd X = solve_tilde(b, tol);
+  for (int j = 0; j < n_; ++j)
+    if (held[j]) X[j] = value[j];
+  return X;
+}
+
+// After a CG solve the free rows of λ are CG's residual with the sign changed: its b̃_I
+// is r_I − S_IA X_A, so (S X − r)_I = −(b̃ − S̃X)_I; only the held rows need S, one
+// column each (S symmetric: column i is row i), |A| columns instead of all n.  After a
+// solve with the factor, the whole product.
+Eigen::VectorXd ExplicitReducedSystem::reaction(const BoundQP& qp, const QuadraticForm& form,
+                                                const Eigen::VectorXd& X, const HeldSet& held) const {
+  if (!last_by_cg_) return ReducedSystem::reaction(qp, form, X, held);
+  Eigen::VectorXd lam = -cg_->residual();
+  for (int i = 0; i < n_; ++i)
+    if (held[i]) {
+      double sum = 0.0;
+      for (SparseMatrix::InnerIterator it(S_, i); it; ++it) sum += it.value() * X[it.row()];
+      lam[i] = sum - qp.r[i];
+    }
+  return lam;
+}
+
+Eigen::VectorXd ExplicitReducedSystem::solve_correction(const Eigen::VectorXd& b, double tol) {
+  y_last_.setZero();  // a correction or a direction: CG from 0
+  return solve_tilde(b, tol);
+}
+
+}  // namespace cdyn

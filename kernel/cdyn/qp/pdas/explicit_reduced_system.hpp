@@ -1,0 +1,89 @@
+// explicit_reduced_system.hpp — the reduced system S̃ X = b̃ of an active-set step
+// (reduced_system.hpp) for an explicitly given S: a CHOLMOD factor kept across calls,
+// moved between active sets by row updates, and preconditioned CG while the set moves.
+//
+// Why this much machinery.  A fresh factorization per active-set change costs about 25
+// forward/back solves (DESIGN.md §3's measurement), and the contact zone of a time loop
+// changes a few unknowns per step.  So:
+//   - one CHOLMOD analysis per pattern serves every active set (S̃ keeps S's pattern);
+//   - the numeric factor is kept across calls: a time loop whose S and active set do
+//     not change pays one forward/back solve per step;
+//   - a change of at most QPOptions::pdas_update_limit unknowns (default max(300, n/100))
+//     is applied to the factor by cholmod_rowdel / cholmod_rowadd, rank-2 modifications
+//     of L (Davis & Hager, SIAM J. Matrix Anal. Appl. 26 (2005) 621–639);
+//   - before touching the factor, a system whose active set differs from the factor's is
+//     solved by CG on S̃ (linalg/masked_cg.hpp: symmetric Gauss–Seidel preconditioner)
+//     when that costs fewer flops than the row updates (cg_pays).  On a well-conditioned
+//     S — the condensed P1+/P0 step matrix — a CG iteration costs a seventh of a
+//     forward/back solve, against hundreds of row updates (≈ 0.1 solve each) or a
+//     factorization when the contact zone jumps;
+//   - once an active set has served three calls in a row the contact zone has settled,
+//     and the factor is brought to it (resync_due), so that the coming steps are one
+//     forward/back solve each again.
+// A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
+// stops at the first non-positive pivot: NumericalError naming the unknown) and is the
+// unconstrained solve of a cold start.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "cdyn/linalg/masked_cg.hpp"
+#include "cdyn/linalg/sparse_cholesky.hpp"
+#include "cdyn/qp/pdas/reduced_system.hpp"
+
+namespace cdyn {
+
+class ExplicitReducedSystem : public ReducedSystem {
+ public:
+  // options and counters are referenced: they must outlive this object.
+  ExplicitReducedSystem(const QPOptions& options, PDASCounters& counters);
+
+  void prepare(const BoundQP& qp, bool new_matrices) override;
+  Eigen::VectorXd solve_fixed(const BoundQP& qp, const HeldSet& held, const Eigen::VectorXd& value,
+                              double tol) override;
+  Eigen::VectorXd reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X,
+                           const HeldSet& held) const override;
+  void set_held(const HeldSet& held, bool fresh = false) override;
+  Eigen::VectorXd solve_correction(const Eigen::VectorXd& b, double tol) override;
+  double last_residual() const override { return last_cg_residual_; }
+  bool last_inexact() const override { return last_by_cg_; }
+  void resume_next() override { resume_cg_ = true; }
+  void set_first_guess(const Eigen::VectorXd& X) override { y_last_ = X; }
+  bool refactorization_may_help() const override { return cg_mode_ || updates_since_factorization_ > 0; }
+
+ private:
+  void factorize(const SparseMatrix& matrix, const std::string& what);
+  void refactorize(const HeldSet& held);
+  void sync_factor(const HeldSet& held);
+  int update_limit() const;
+  bool resync_due(const HeldSet& held) const;
+  bool cg_pays(const HeldSet& held) const;
+  Eigen::VectorXd solve_tilde(const Eigen::VectorXd& b, double cg_tol);
+
+  const QPOptions& opt_;
+  PDASCounters& counters_;
+  int n_ = 0;
+  SparseMatrix S_, S_tilde_;              // the last S seen; S with the held set eliminated
+  SparseCholesky chol_;
+  HeldSet factor_held_;                   // the held set chol_ currently factorizes
+  int updates_since_factorization_ = 0;
+  // CG on S̃ for a held set other than the factor's (QPOptions::pdas_cg_iterations)
+  bool cg_mode_ = false;                  // solve_tilde uses CG with cg_held_
+  bool cg_failed_ = false;                // CG did not converge once for this S: not tried again
+  HeldSet cg_held_;
+  int cg_since_sync_ = 0;                 // CG iterations since the factor was last (re)made
+  int cg_mode_uses_ = 0;                  // calls in a row that used cg_held_ (resync_due)
+  int calls_ = 0, cg_held_call_ = 0;      // prepare() calls so far; the last that used cg_held_
+  std::optional<MaskedCG> cg_;            // CG on S_ (its preconditioner, work vectors, last residual)
+  Eigen::VectorXd y_last_;                // the last solution of solve_tilde: CG's first guess
+  double last_cg_residual_ = 0.0;         // CG's scaled residual in the last solve_tilde (0: by the factor)
+  bool last_by_cg_ = false;               // the last solve_tilde was a converged CG solve
+  bool resume_cg_ = false;                // the next solve_tilde repeats the last one at a smaller tol
+  // What the two ways to a new active set have cost so far on this pattern (flops as
+  // CHOLMOD counts them for a row update; CG iterations), for cg_pays().
+  double update_flops_ = 0.0;
+  int updates_measured_ = 0;
+};
+
+}  // namespace cdyn

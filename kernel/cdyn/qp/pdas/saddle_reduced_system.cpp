@@ -1,0 +1,101 @@
+// saddle_reduced_system.cpp — S̃ X = b̃ through UMFPACK's LU of the saddle matrix
+// [[A, c Bᵀ], [B, −C]] with the held unknowns eliminated; see saddle_reduced_system.hpp.
+#include "cdyn/qp/pdas/saddle_reduced_system.hpp"
+
+#include <Eigen/UmfPackSupport>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+struct SaddleReducedSystem::LU {
+  Eigen::UmfPackLU<SparseMatrix> umfpack;
+};
+
+SaddleReducedSystem::SaddleReducedSystem(PDASCounters& counters)
+    : counters_(counters), lu_(std::make_unique<LU>()) {}
+SaddleReducedSystem::~SaddleReducedSystem() = default;
+
+void SaddleReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
+  n_ = qp.size();
+  if (!new_matrices && lu_factorized_) return;
+  const SaddleForm& f = *qp.saddle;
+  if (lu_factorized_ && f.c == blocks_.c && same_matrix(f.A, blocks_.A) && same_matrix(f.B, blocks_.B) &&
+      same_matrix(f.C, blocks_.C))
+    return;
+  blocks_ = f;
+  const int n = n_, m = static_cast<int>(f.C.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(f.A.nonZeros() + 2 * f.B.nonZeros() + f.C.nonZeros() + n);
+  for (int j = 0; j < n; ++j) t.emplace_back(j, j, 0.0);  // a stored diagonal for the identity rows
+  for (int j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(f.A, j); it; ++it) t.emplace_back(it.row(), j, it.value());
+  for (int j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(f.B, j); it; ++it) {
+      t.emplace_back(n + it.row(), j, it.value());         // B
+      t.emplace_back(j, n + it.row(), f.c * it.value());   // c Bᵀ
+    }
+  for (int j = 0; j < m; ++j)
+    for (SparseMatrix::InnerIterator it(f.C, j); it; ++it) t.emplace_back(n + it.row(), n + j, -it.value());
+  SparseMatrix K(n + m, n + m);
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  const bool same_pattern = same_matrix(K, K_, false) && lu_factorized_;
+  K_ = std::move(K);
+  K_tilde_ = K_;
+  if (!same_pattern) {
+    lu_->umfpack.analyzePattern(K_);
+    ++counters_.analyses;
+    if (lu_->umfpack.info() != Eigen::Success)
+      throw NumericalError("pdas: UMFPACK could not analyse the saddle matrix [[A, c B^T], [B, -C]]");
+  }
+  lu_factorized_ = false;
+}
+
+void SaddleReducedSystem::set_held(const HeldSet& held, bool fresh) {
+  if (lu_factorized_ && held == lu_held_ && !fresh) return;
+  replace_held_by_identity(K_, held, K_tilde_);
+  lu_->umfpack.factorize(K_tilde_);
+  ++counters_.factorizations;
+  if (lu_->umfpack.info() != Eigen::Success)
+    throw NumericalError("pdas: UMFPACK found the saddle matrix singular (is C positive definite and "
+                         "A + c B^T C^-1 B positive definite?)");
+  lu_factorized_ = true;
+  lu_held_ = held;
+}
+
+// K̃ [y; z] = [top; bottom]; returns y.
+Eigen::VectorXd SaddleReducedSystem::solve_tilde(const Eigen::VectorXd& top, const Eigen::VectorXd& bottom) {
+  ++counters_.solves;
+  const int m = static_cast<int>(K_.rows()) - n_;
+  Eigen::VectorXd b(n_ + m);
+  b.head(n_) = top;
+  b.tail(m) = bottom;
+  Eigen::VectorXd y = lu_->umfpack.solve(b);
+  return y.head(n_);
+}
+
+Eigen::VectorXd SaddleReducedSystem::solve_fixed(const BoundQP& qp, const HeldSet& held,
+                                                 const Eigen::VectorXd& value, double) {
+  set_held(held);
+  // X rows: r_I − A_IA X_A (X_A on the held rows); Z rows: −B_A X_A.
+  Eigen::VectorXd top = qp.r;
+  Eigen::VectorXd bottom = Eigen::VectorXd::Zero(blocks_.C.rows());
+  for (int j = 0; j < n_; ++j)
+    if (held[j]) {
+      for (SparseMatrix::InnerIterator it(blocks_.A, j); it; ++it) top[it.row()] -= it.value() * value[j];
+      for (SparseMatrix::InnerIterator it(blocks_.B, j); it; ++it) bottom[it.row()] -= it.value() * value[j];
+    }
+  for (int j = 0; j < n_; ++j)
+    if (held[j]) top[j] = value[j];
+  Eigen::VectorXd X = solve_tilde(top, bottom);
+  for (int j = 0; j < n_; ++j)
+    if (held[j]) X[j] = value[j];
+  return X;
+}
+
+Eigen::VectorXd SaddleReducedSystem::solve_correction(const Eigen::VectorXd& b, double) {
+  return solve_tilde(b, Eigen::VectorXd::Zero(blocks_.C.rows()));
+}
+
+}  // namespace cdyn
