@@ -204,11 +204,9 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
   for (int j = 0; j < n_; ++j)
     if (held[j])
       for (SparseMatrix::InnerIterator it(S_, j); it; ++it) b[it.row()] -= it.value() * value[j];
-  for (int j = 0; j < n_; ++j)
-    if (held[j]) b[j] = value[j];
+  copy_held_values(held, value, b);
   Eigen::VectorXd X = solve_tilde(b, tol);
-  for (int j = 0; j < n_; ++j)
-    if (held[j]) X[j] = value[j];
+  copy_held_values(held, value, X);
   return X;
 }
 

@@ -10,7 +10,7 @@
 //     not change pays one forward/back solve per step;
 //   - a change of at most QPOptions::pdas_update_limit unknowns (default max(300, n/100))
 //     is applied to the factor by cholmod_rowdel / cholmod_rowadd, rank-2 modifications
-//     of L (Davis & Hager, SIAM J. Matrix Anal. Appl. 26 (2005) 621–639);
+//     of L (Davis & Hager 2005, row modifications of a sparse Cholesky factorization);
 //   - before touching the factor, a system whose active set differs from the factor's is
 //     solved by CG on S̃ (linalg/masked_cg.hpp: symmetric Gauss–Seidel preconditioner)
 //     when that costs fewer flops than the row updates (cg_pays).  On a well-conditioned

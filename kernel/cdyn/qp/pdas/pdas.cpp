@@ -44,8 +44,8 @@ ActiveSet initial_active_set(const BoundQP& qp, const QPResult* warm_start) {
   return state;
 }
 
-// The PDAS rule (HIK 2002, Algorithm 1 with the scaling D): the next active set from
-// (X, λ).  A_l = {λ_i + D_i(lower_i − X_i) > 0}, A_u = {λ_i + D_i(upper_i − X_i) < 0}.
+// The PDAS rule (HIK 2002, with the scaling D for their constant c): the next active
+// set from (X, λ), A_l = {λ_i + D_i(lower_i − X_i) > 0}, A_u = {λ_i + D_i(upper_i − X_i) < 0}.
 ActiveSet pdas_rule(const BoundQP& qp, const Eigen::VectorXd& D, const Eigen::VectorXd& X,
                     const Eigen::VectorXd& lam) {
   const Eigen::VectorXd& l = qp.lower;
@@ -185,7 +185,9 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
       if (finished) return finish("");
     }
     if (seen.count(next)) {
-      cycled = true;  // plain PDAS would go round for ever (S is not an M-matrix)
+      // An active set comes back: PDAS would go round for ever.  Monotone convergence
+      // holds only for an M-matrix S (HIK 2002, Thm 3.3) and exact solves.
+      cycled = true;
       break;
     }
     seen.insert(state);

@@ -46,4 +46,9 @@ void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, Sparse
   }
 }
 
+void copy_held_values(const HeldSet& held, const Eigen::VectorXd& value, Eigen::VectorXd& v) {
+  for (std::size_t j = 0; j < held.size(); ++j)
+    if (held[j]) v[j] = value[j];
+}
+
 }  // namespace cdyn

@@ -101,4 +101,8 @@ class ReducedSystem {
 // identity's.  `out` has M's pattern (a copy of M): only the values are written.
 void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, SparseMatrix& out);
 
+// v_i = value_i on the held unknowns (the identity rows of S̃: b̃_A = X_A, and X_A exactly
+// after a solve), v unchanged elsewhere.
+void copy_held_values(const HeldSet& held, const Eigen::VectorXd& value, Eigen::VectorXd& v);
+
 }  // namespace cdyn

@@ -1,8 +1,8 @@
 // reference_pdas.hpp — the primal-dual active set method in its textbook form, as a test
 // oracle for the production solver (pdas.hpp).
 //
-// Hintermüller, Ito & Kunisch, SIAM J. Optim. 13 (2002) 865–888, Algorithm 1 (with the
-// diagonal scaling D = diag S in place of their constant c, as pdas.hpp):
+// Hintermüller, Ito & Kunisch, SIAM J. Optim. 13 (2002) 865–888 (with the diagonal
+// scaling D = diag S in place of their constant c, as pdas.hpp):
 //     A_l = {i : λ_i + D_i(lower_i − X_i) > 0},   A_u = {i : λ_i + D_i(upper_i − X_i) < 0},
 //     X = lower on A_l,  X = upper on A_u,  S_II X_I = r_I − S_IA X_A on the rest I,
 //     λ = S X − r,

@@ -86,11 +86,9 @@ Eigen::VectorXd SaddleReducedSystem::solve_fixed(const BoundQP& qp, const HeldSe
       for (SparseMatrix::InnerIterator it(blocks_.A, j); it; ++it) top[it.row()] -= it.value() * value[j];
       for (SparseMatrix::InnerIterator it(blocks_.B, j); it; ++it) bottom[it.row()] -= it.value() * value[j];
     }
-  for (int j = 0; j < n_; ++j)
-    if (held[j]) top[j] = value[j];
+  copy_held_values(held, value, top);
   Eigen::VectorXd X = solve_tilde(top, bottom);
-  for (int j = 0; j < n_; ++j)
-    if (held[j]) X[j] = value[j];
+  copy_held_values(held, value, X);
   return X;
 }
 
