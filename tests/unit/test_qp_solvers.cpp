@@ -281,9 +281,9 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   // bounds), then the bounded QP solved again and again from its own solution, as in a
   // time loop whose contact zone has stopped moving.  Each of these calls meets an
   // active set that differs from the factor's: the first two solve it by CG (no row
-  // update measured yet: qp/pdas/pdas.cpp cg_pays), then the set has served three solves in
-  // a row and the factor is brought to it; from there on a call is one forward/back
-  // solve with the factor and no CG.
+  // update measured yet: cg_pays in explicit_reduced_system.cpp), then the set has
+  // served three solves in a row and the factor is brought to it; from there on a call
+  // is one forward/back solve with the factor and no CG.
   const BoundQP qp = random_problem(20, 20, 7, false);
   const QPResult solution = cdyn::PDASSolver().solve(qp);
   ASSERT_GT(std::count_if(solution.active.begin(), solution.active.end(), [](auto a) { return a != 0; }), 0);
@@ -310,7 +310,7 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
 
 TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   // A cold start whose every system is solved by CG (the factor is that of S with no
-  // active bound): the iterates are solved loosely (qp/pdas/pdas.cpp kLooseSolve) and the
+  // active bound): the iterates are solved loosely (reduced_system.cpp kLooseSolve) and the
   // repeating active set is confirmed on a tight solve.  The result must meet tol like
   // any other, with the active set of the direct solver (factor only) and X within the
   // sum of the two a-posteriori error bounds.

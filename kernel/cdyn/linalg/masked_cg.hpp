@@ -1,6 +1,6 @@
 // linalg/masked_cg.hpp — preconditioned conjugate gradients on S̃ y = b, where S̃ is the
 // symmetric positive definite S with the rows and columns of a held set A replaced by the
-// identity's (the reduced system of an active-set step, qp/pdas/pdas.hpp):
+// identity's (the reduced system of an active-set step, qp/pdas/reduced_system.hpp):
 //     y_i = b_i  (i ∈ A),        Σ_{j ∉ A} S_ij y_j = b_i  (i ∉ A),
 // where b_I already carries −S_IA y_A.
 // On A y is set to b and every vector of the iteration vanishes, so this is CG on S_II
@@ -14,7 +14,7 @@
 //
 // Stopping test: the Jacobi-scaled residual max_{i ∉ A} |b − S̃y|_i / S_ii ≤ tol.
 // In PDAS this quantity is exactly the natural residual that kkt_residual measures on
-// the free unknowns (λ_i / D_i, qp/ (checks.cpp, kkt.cpp, quadratic_form.cpp, step_solver.cpp)), so `tol` is set in the units of the QP's own
+// the free unknowns (λ_i / D_i, qp/kkt.hpp), so `tol` is set in the units of the QP's own
 // convergence test rather than as a relative 2-norm that has to be guessed tight enough.
 // CG carries the preconditioned residual r̂ = L̂⁻¹ D^{-1/2} r; the test is made on
 // max |r̂_i| / S_ii^{1/2} first (within a factor 1 + ‖L̂ − I‖∞ of the true quantity) and,
@@ -56,7 +56,7 @@ class MaskedCG {
 
   // b − S̃y at the last return, as CG updates it (0 on A).  It differs from the residual
   // recomputed from y by round-off, about ε ‖S‖ ‖y‖ per iteration.  In PDAS it is −λ on
-  // the free unknowns (qp/pdas/pdas.cpp), which then costs no product with S.
+  // the free unknowns (qp/pdas/explicit_reduced_system.cpp), which then costs no product with S.
   const Eigen::VectorXd& residual() const { return r_; }
 
  private:
