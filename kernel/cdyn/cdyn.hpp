@@ -53,7 +53,12 @@
 #ifdef CDYN_WITH_NLOPT
 #include "cdyn/qp/nlopt.hpp"
 #endif
+#include "cdyn/qp/pdas/explicit_reduced_system.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
+#include "cdyn/qp/pdas/projected_newton.hpp"
+#include "cdyn/qp/pdas/reduced_system.hpp"
+#include "cdyn/qp/pdas/reference_pdas.hpp"
+#include "cdyn/qp/pdas/saddle_reduced_system.hpp"
 #include "cdyn/qp/pgs.hpp"
 #include "cdyn/qp/quadratic_form.hpp"
 #include "cdyn/qp/rotated_qp.hpp"
