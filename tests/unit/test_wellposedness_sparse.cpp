@@ -24,24 +24,12 @@
 #include "cdyn/wellposedness/lanczos.hpp"
 #include "cdyn/wellposedness/row_basis.hpp"
 #include "cdyn/wellposedness/shifted_gram.hpp"
+#include "wellposedness_fixtures.hpp"
 
 using namespace cdyn;
+using namespace cdyn::testing;  // wellposedness_fixtures.hpp
 
 namespace {
-
-SparseMatrix sparse(const Eigen::MatrixXd& D) { return D.sparseView(); }
-
-std::vector<int> parts(const Mesh& m, const std::vector<std::string>& names) {
-  std::vector<int> p;
-  for (const auto& n : names) p.push_back(m.part_index(n));
-  return p;
-}
-
-std::vector<int> all_vertices(const Mesh& m) {
-  std::vector<int> v(m.n_vertices());
-  for (int i = 0; i < m.n_vertices(); ++i) v[i] = i;
-  return v;
-}
 
 // The largest |β_sparse − β_dense| / β_dense over the cases compared so far.
 double worst_relative = 0.0;
@@ -79,9 +67,7 @@ void expect_agreement(const std::string& where, const Mesh& mesh, const std::str
 TEST(Condition12Sparse, AgreesWithDenseOnEveryCase) {
   for (int n : {10, 20}) {
     const Mesh mesh = unit_square_mesh(n);
-    WellPosednessSetup setup;
-    setup.dirichlet_parts = parts(mesh, {"bottom", "right", "top", "left"});
-    setup.constrained_vertices = all_vertices(mesh);
+    const WellPosednessSetup setup = clamped_membrane_setup(mesh);
     const std::string where = "membrane n=" + std::to_string(n);
     for (const std::string spec : {"P1/P1", "P1/P0", "P1+/P0", "P1+/P1", "P2/P1", "P2/P0", "consistent", "lumped"})
       expect_agreement(where, mesh, spec, setup);
