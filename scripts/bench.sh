@@ -1,8 +1,9 @@
 #!/bin/sh
-# bench.sh — runs the benchmark set of docs/performance.md, about 7–8 minutes on the 2-core
+# bench.sh — runs the benchmark set of docs/performance.md, about 9–10 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
-# BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step and
-# bench_step_solvers built (cmake --build BUILD --target cdyn_app bench_contact_step bench_step_solvers).
+# BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers
+# and bench_condition12 built (cmake --build BUILD --target cdyn_app bench_contact_step bench_step_solvers
+# bench_condition12).
 set -e
 BUILD=${1:-build}
 OUT=${2:-out/bench}
@@ -34,4 +35,6 @@ echo "== (e) speed against error (cdyn study)"
 "$BUILD/apps/cdyn" study "$ROOT/data/scenes/bar.toml" --vary method.pair=P1+/P0,P1/P1,P1/P0 \
     --vary time.scheme=midpoint,backward_euler --vary mesh.n=20,40,80,160 --vary time.dt=0.02,0.01,0.005 \
     --out "$OUT/study_bar"
+echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
+"$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -4,8 +4,9 @@
 // One row per pair W^h/H^h (and per classical mass model): N_W (free displacement
 // dofs), N_H (velocity dofs), dim Ker B, N_g (constraints), β = σ_min(G Z) with Z an
 // orthonormal basis of Ker B, and whether (12) holds (seed, "Sufficient condition
-// for the well-posedness").  β is computed densely; rows too large for that, or a
-// model that does not apply (redistribution with a volume obstacle), say why.
+// for the well-posedness").  β is computed at any size (dense up to 150 dofs, sparse
+// above: wellposedness/condition12.hpp); a model that does not apply (redistribution
+// with a volume obstacle) or a failed factorization (out of memory) says why.
 #include <cstdio>
 #include <iostream>
 
@@ -45,10 +46,11 @@ int cmd_wellposed(const WellposedOptions& opt) {
       row["N_g"] = w.n_g;
       row["beta"] = w.beta;
       row["satisfied"] = w.satisfied;
+      row["method"] = w.method;
       if (!opt.json)
         std::printf("%-14s %7d %7d %9d %6d %12.4e  %s\n", spec.c_str(), w.n_W, w.n_H, w.dim_ker_B, w.n_g, w.beta,
                     w.satisfied ? "yes" : "no");
-    } catch (const InputError& e) {
+    } catch (const std::runtime_error& e) {  // InputError (does not apply), NumericalError
       row["not_computed"] = e.what();
       if (!opt.json) std::printf("%-14s  not computed: %s\n", spec.c_str(), e.what());
     }

@@ -42,6 +42,10 @@
 #include "cdyn/exact/bar_exact.hpp"
 // wellposedness/
 #include "cdyn/wellposedness/condition12.hpp"
+#include "cdyn/wellposedness/condition12_sparse.hpp"
+#include "cdyn/wellposedness/lanczos.hpp"
+#include "cdyn/wellposedness/row_basis.hpp"
+#include "cdyn/wellposedness/shifted_gram.hpp"
 // qp/
 #include "cdyn/qp/bound_qp.hpp"
 #include "cdyn/qp/checks.hpp"

@@ -1,16 +1,27 @@
-// condition12.cpp — β = σ_min(G Z) of condition (12) by dense orthogonal factorizations.
+// condition12.cpp — β = σ_min(G Z) of condition (12) by dense orthogonal factorizations,
+// and the choice between that and the sparse method.
 #include "cdyn/wellposedness/condition12.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/mass/mass_model.hpp"
+#include "cdyn/wellposedness/condition12_sparse.hpp"
+#include "cdyn/wellposedness/row_basis.hpp"
 
 namespace cdyn {
 
-WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, int dense_limit) {
+WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, Condition12Method method, int dense_limit) {
+  if (method == Condition12Method::automatic)
+    method = std::max(B.rows(), B.cols()) <= kCondition12DenseUpTo ? Condition12Method::dense
+                                                                    : Condition12Method::sparse;
+  return method == Condition12Method::dense ? condition12_dense(B, G, dense_limit) : condition12_sparse(B, G);
+}
+
+WellPosedness condition12_dense(const SparseMatrix& B, const SparseMatrix& G, int dense_limit) {
   const int nW = static_cast<int>(B.cols()), nH = static_cast<int>(B.rows()), ng = static_cast<int>(G.rows());
   if (G.cols() != nW)
     throw InputError("condition (12): G has " + std::to_string(G.cols()) + " columns, B has " + std::to_string(nW));
@@ -19,16 +30,12 @@ WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, int dens
                      " velocity dofs exceed the dense limit of " + std::to_string(dense_limit) +
                      " of this check (dense QR of B); use a coarser mesh");
   WellPosedness r;
+  r.method = "dense";
   r.n_W = nW;
   r.n_H = nH;
   r.n_g = ng;
 
-  // Row scaling D B: the same kernel, rows of unit size whatever the local cell size.
-  Eigen::MatrixXd Bt = Eigen::MatrixXd(B).transpose();  // N_W × N_H
-  for (int i = 0; i < nH; ++i) {
-    const double s = Bt.col(i).cwiseAbs().maxCoeff();
-    if (s > 0.0) Bt.col(i) /= s;
-  }
+  const Eigen::MatrixXd Bt = Eigen::MatrixXd(rows_scaled_to_unit_max(B)).transpose();  // (D B)ᵀ, N_W × N_H
   int rank = 0;
   Eigen::MatrixXd ZtGt;  // Zᵀ Gᵀ, (N_W − r) × N_g
   if (nH > 0) {
@@ -102,7 +109,7 @@ WellPosedness condition12_on(const Mesh& mesh, const MassSpec& spec, const WellP
   } else {
     B = mixed_blocks(W, bc, spec.H, 1.0).B;
   }
-  WellPosedness r = condition12(B, G, setup.dense_limit);
+  WellPosedness r = condition12(B, G, setup.method, setup.dense_limit);
   r.pair = spec.name();
   return r;
 }

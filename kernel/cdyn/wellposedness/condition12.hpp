@@ -10,12 +10,18 @@
 // contact dofs).  With (12), Theorem 1 gives a unique Lipschitz solution and Theorem 2
 // energy conservation.
 //
-// Method (dense, docs/semi_discretization.md): a column-pivoted Householder QR of
-// (D B)ᵀ, D = diag(1/max_j |B_ij|) (a row scaling, Ker unchanged), gives the rank r of
-// B and an orthogonal Q = [Q_r, Z]; Zᵀ Gᵀ is the last N_W − r rows of Qᵀ Gᵀ (the
-// reflections applied to the N_g columns of Gᵀ, Z never formed), and β its smallest
-// singular value.  Cost O(N_W N_H (N_H + N_g)), memory N_W × N_H doubles: problems
-// with more than kWellposednessDenseLimit free dofs are refused with an InputError.
+// Two methods compute it (docs/semi_discretization.md, section 6):
+//  - dense (this file), the reference: a column-pivoted Householder QR of (D B)ᵀ,
+//    D = diag(1/max_j |B_ij|) (a row scaling, Ker unchanged), gives the rank r of B and
+//    an orthogonal Q = [Q_r, Z]; Zᵀ Gᵀ is the last N_W − r rows of Qᵀ Gᵀ (the
+//    reflections applied to the N_g columns of Gᵀ, Z never formed), and β its smallest
+//    singular value.  Cost O(N_W N_H (N_H + N_g)), memory N_W × N_H doubles: refused
+//    above kWellposednessDenseLimit free dofs;
+//  - sparse (condition12_sparse.hpp): β² = λ_min(G P Gᵀ) by certified shift-and-invert
+//    Lanczos on sparse Cholesky factorizations of the Gram matrix of [B; G]; any size
+//    that fits in memory (1M dofs in about a minute).
+// condition12() picks the dense method up to kCondition12DenseUpTo dofs, where it is the
+// faster one, and the sparse one above.
 #pragma once
 
 #include <optional>
@@ -33,6 +39,16 @@ namespace cdyn {
 // machine): membrane n = 20, P1+/P0 (N_W = 1161) 0.6 s, P2/P1 (1521) 0.4 s; n = 25,
 // P1+/P0 (1826) 2.6 s; the QR costs ~N_W N_H², so 3000 is about 10–15 s.
 inline constexpr int kWellposednessDenseLimit = 3000;
+
+// Largest max(N_W, N_H) for which condition12() uses the dense method by default.
+// Measured (Release, one core, best of 7) on the membrane for P1+/P0, P1+/P1, P2/P1 and
+// P2/P0: the dense method is faster up to N_W ≈ 100 (0.4 ms against 0.6 ms at n = 6),
+// the sparse one from N_W ≈ 180 on (1.7 ms against 2.3 ms at n = 8; 5–10× at N_W ≈ 600).
+// Both take under a millisecond at the crossover, so the choice matters for speed only
+// above it, where the dense cost grows like N_W³.
+inline constexpr int kCondition12DenseUpTo = 150;
+
+enum class Condition12Method { automatic, dense, sparse };
 
 // β at or below this counts as 0.  When G Z is exactly rank deficient the computed β
 // is round-off: exactly 0 from BDCSVD's deflation, 3e-16 .. 4e-16 with JacobiSVD
@@ -56,11 +72,22 @@ struct WellPosedness {
   int n_g = 0;           // constraints
   double beta = 0.0;     // σ_min(G Z); +infinity when there is no constraint
   bool satisfied = false;  // β > kBetaTolerance
+  std::string method;      // "dense" or "sparse"
+  int factorizations = 0;  // sparse method: Cholesky factorizations of the shifted Gram matrix
+  int solves = 0;          // sparse method: solves with them
 };
 
 // Condition (12) for the given B (rows H^h, columns the free dofs of W^h) and G
-// (N_g × N_W).  Throws InputError above the dense limit.
-WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G, int dense_limit = kWellposednessDenseLimit);
+// (N_g × N_W), by `method` (automatic: dense up to kCondition12DenseUpTo dofs).  The
+// dense method throws InputError above `dense_limit`; the sparse one NumericalError when
+// a factorization fails (out of memory).
+WellPosedness condition12(const SparseMatrix& B, const SparseMatrix& G,
+                          Condition12Method method = Condition12Method::automatic,
+                          int dense_limit = kWellposednessDenseLimit);
+
+// The dense reference method alone.
+WellPosedness condition12_dense(const SparseMatrix& B, const SparseMatrix& G,
+                                int dense_limit = kWellposednessDenseLimit);
 
 // G for constraints at vertices (one row each, fixed vertices skipped: a Dirichlet
 // vertex is not an unknown): scalar W^h: row −e_v (the obstacle u(a_v) ≥ g, seed eq. 16);
@@ -75,14 +102,16 @@ struct WellPosednessSetup {
   std::vector<int> constrained_vertices;  // where the constraint acts (fixed ones skipped)
   int components = 1;                     // 2: plane elasticity
   std::optional<Point> normal;            // components = 2: the constraint direction
-  int dense_limit = kWellposednessDenseLimit;
+  Condition12Method method = Condition12Method::automatic;
+  int dense_limit = kWellposednessDenseLimit;  // for method = dense
 };
 
 // Condition (12) for the discretization `spec` on `mesh`: W^h = spec.W, B of the pair
 // (or, for a classical model, B = M: the redistributed model takes the constrained
 // vertices, all components, as its contact dofs) and G of the constrained vertices.
 // Throws InputError when the model cannot be built for this setup (e.g. redistributed
-// with every free vertex constrained) or the problem exceeds the dense limit.
+// with every free vertex constrained) or the dense method is asked beyond its limit,
+// NumericalError when the sparse method's factorization fails.
 WellPosedness condition12_on(const Mesh& mesh, const MassSpec& spec, const WellPosednessSetup& setup);
 
 }  // namespace cdyn
