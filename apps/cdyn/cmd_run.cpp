@@ -222,6 +222,7 @@ int cmd_run(const RunOptions& opt) {
   State s = sim.initial;
   const double E0 = sim.scheme->energy(s).total();
   double max_drift = 0.0, max_violation = p.max_violation(s.U), qp_iters = 0.0, qp_seconds = 0.0, E_final = E0;
+  double energy_iters = 0.0, max_reconstruction_kkt = 0.0;
   int max_active = 0;
   double max_kkt = 0.0;  // the largest step-QP KKT residual (≤ solver.tol: the steps are solved)
   Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
@@ -267,6 +268,8 @@ int cmd_run(const RunOptions& opt) {
     const Eigen::VectorXd du = p.global(s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
     qp_iters += st.qp_iterations;
+    energy_iters += st.energy_iterations;
+    max_reconstruction_kkt = std::max(max_reconstruction_kkt, st.reconstruction_kkt);
     qp_seconds += st.qp_seconds;
     max_active = std::max(max_active, st.active);
     max_kkt = std::max(max_kkt, st.kkt_residual);
@@ -294,6 +297,7 @@ int cmd_run(const RunOptions& opt) {
   j["model"] = sim.model;
   j["pair"] = sim.pair;
   j["scheme"] = sim.scheme_name;
+  j["full_steps"] = to_string(sim.scheme->full_steps());
   j["solver"] = sim.solver_name;
   j["solver_tol"] = sim.tol;
   j["n_dofs"] = p.W->n_dofs();
@@ -316,6 +320,8 @@ int cmd_run(const RunOptions& opt) {
   j["s_per_step"] = wall / per;
   j["qp_s_per_step"] = qp_seconds / per;
   j["qp_iters_mean"] = qp_iters / per;
+  if (energy_iters > 0) j["energy_iters_mean"] = energy_iters / per;  // discrete_gradient: step QPs per step
+  if (sim.scheme->full_steps() == FullSteps::Reconstructed) j["reconstruction_kkt_max"] = max_reconstruction_kkt;
   j["kkt_residual_max"] = max_kkt;
   j["fields_s"] = fields_seconds;
   if (u_exact) j["error_exact"] = l2_error_at(sim, *u_exact, s);  // ‖u_h(T) − u(T)‖_L2

@@ -29,7 +29,7 @@ const std::set<std::string> kKnownKeys = {
     "initial.u",      "initial.v",
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
-    "time.beta",      "time.gamma",     "time.restitution",
+    "time.beta",      "time.gamma",     "time.restitution", "time.reconstruct", "time.energy_tol",
     "solver.name",    "solver.tol",     "solver.max_iterations",
     "solver.condense", "solver.cg_iterations",
     "exact.solution",

@@ -200,11 +200,15 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   t.parameters.gamma = s.number("time.gamma", t.parameters.gamma);
   t.parameters.restitution = s.number("time.restitution", t.parameters.restitution);
   t.parameters.condense = s.boolean("solver.condense", t.parameters.condense);
+  t.parameters.reconstruct = s.boolean("time.reconstruct", t.parameters.reconstruct);
+  t.parameters.energy_tol = s.number("time.energy_tol", t.parameters.energy_tol);
+  if (!(t.parameters.energy_tol > 0.0)) throw InputError("time.energy_tol: must be positive");
 
   SceneSpec::Solver& v = spec.solver;
   v.name = s.string("solver.name", "pdas");
   v.options.tol = s.number("solver.tol", 1e-10);
   if (!(v.options.tol > 0.0)) throw InputError("solver.tol: must be positive");
+  t.parameters.tol = v.options.tol;  // the full-step reconstruction's QP, as tight as the step's
   v.options.max_iterations = s.integer("solver.max_iterations", 0);
   v.options.pdas_cg_iterations = s.integer("solver.cg_iterations", v.options.pdas_cg_iterations);
   if (v.options.pdas_cg_iterations < 0) throw InputError("solver.cg_iterations: must be 0 (no CG) or more");

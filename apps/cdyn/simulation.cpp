@@ -200,6 +200,7 @@ Simulation make_simulation(const SceneSpec& spec) {
     throw InputError("initial.u: the initial state violates the obstacle (by " + std::to_string(violation) + ")");
   sim.initial.V = initial_velocity(p, initial_field(p, s.initial.v));
   sim.initial.reaction = Eigen::VectorXd::Zero(p.n_free());
+  sim.scheme->initialize(sim.initial);  // e.g. U⁰'s massless part from eq. (14)
   add_probes(sim);
   return sim;
 }

@@ -29,6 +29,7 @@
 #include "cdyn/mass/classical.hpp"
 #include "cdyn/mass/mass_model.hpp"
 #include "cdyn/mass/mass_spec.hpp"
+#include "cdyn/mass/massless_modes.hpp"
 #include "cdyn/mass/mixed.hpp"
 #include "cdyn/mass/redistribution.hpp"
 #include "cdyn/mass/rotated.hpp"
@@ -68,6 +69,7 @@
 #include "cdyn/qp/rotated_qp.hpp"
 #include "cdyn/qp/step_solver.hpp"
 // schemes/
+#include "cdyn/schemes/full_step.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 // post/

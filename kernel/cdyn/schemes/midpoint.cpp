@@ -5,11 +5,20 @@
 //   U^{n+½} = (Uⁿ + U^{n+1})/2,  V^{n+½} = (Vⁿ + V^{n+1})/2,  c = 1/dt.
 //
 // midpoint (X = U^{n+½}, constrained):  S = 4 M c² + A,  r = 4 M Uⁿ c² + 2 Bᵀ Vⁿ c + L,
-//     then U^{n+1} = 2 U^{n+½} − Uⁿ.
+//     then B U^{n+1} = B (2 U^{n+½} − Uⁿ).
 // midpoint_end (X = U^{n+1}, constrained): S = 2 M c² + A/2,
 //     r = 2 M Uⁿ c² + 2 Bᵀ Vⁿ c − A Uⁿ/2 + L.
 // Both end with C (Vⁿ + V^{n+1})/2 = B (U^{n+1} − Uⁿ) c.  Without active constraints
 // the rule conserves J exactly: J^{n+1} − Jⁿ = (U^{n+1} − Uⁿ)ᵀ Gᵀλ (docs/schemes.md).
+//
+// The massless part of U^{n+1} (Ker B) is not what the extrapolation 2U^{n+½} − Uⁿ (or
+// midpoint_end's QP, which balances it at the midpoint) leaves: it solves the static
+// problem (14) at t^{n+1}, computed after the step by FullStepReconstruction whenever
+// Ker B has a local basis (P1+/P0, the redistributed mass; schemes/full_step.hpp).  The
+// step reads Uⁿ only through B Uⁿ, so this changes the reported state, not the dynamics.
+#include <optional>
+
+#include "cdyn/schemes/full_step.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
@@ -18,12 +27,27 @@ namespace {
 
 class Midpoint final : public StepQPScheme {
  public:
-  Midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool constraint_at_end, bool condense)
-      : StepQPScheme(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, condense),
-        at_end_(constraint_at_end) {}
+  Midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool constraint_at_end,
+           const SchemeParameters& parameters)
+      : StepQPScheme(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, parameters.condense),
+        at_end_(constraint_at_end) {
+    full_step_.emplace(p, parameters.tol);
+    if (!full_step_->available() || (full_step_->needed() && !parameters.reconstruct)) full_step_.reset();
+  }
   std::string name() const override { return at_end_ ? "midpoint_end" : "midpoint"; }
 
+  FullSteps full_steps() const override {
+    if (!full_step_) return FullSteps::Extrapolated;
+    return full_step_->needed() ? FullSteps::Reconstructed : FullSteps::Solved;
+  }
+
+  void initialize(State& s) override {
+    initialized_ = true;
+    if (full_step_) s.U = (*full_step_)(s.U, s.t);
+  }
+
   StepStats step(State& s) override {
+    if (!initialized_) initialize(s);
     const double c = 1.0 / dt_;
     const Eigen::VectorXd& L = p_.load(s.t + 0.5 * dt_);
     StepStats stats;
@@ -34,24 +58,27 @@ class Midpoint final : public StepQPScheme {
       U1 = 2.0 * solve(inertia(4 * c * c, s.U, 2 * c, s.V) + L, s, stats) - s.U;
     }
     s.V = 2.0 * p_.mass->velocity(c * (U1 - s.U)) - s.V;
-    s.U = U1;
     s.t += dt_;
+    s.U = full_step_ ? (*full_step_)(U1, s.t, &stats.reconstruction_kkt) : U1;
     return stats;
   }
 
  private:
   bool at_end_;
+  bool initialized_ = false;
+  std::optional<FullStepReconstruction> full_step_;
 };
 
 }  // namespace
 
-std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense) {
-  return std::make_unique<Midpoint>(p, solver, dt, false, condense);
+std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                          const SchemeParameters& parameters) {
+  return std::make_unique<Midpoint>(p, solver, dt, false, parameters);
 }
 
 std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt,
-                                              bool condense) {
-  return std::make_unique<Midpoint>(p, solver, dt, true, condense);
+                                              const SchemeParameters& parameters) {
+  return std::make_unique<Midpoint>(p, solver, dt, true, parameters);
 }
 
 }  // namespace cdyn

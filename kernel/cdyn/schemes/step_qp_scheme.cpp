@@ -10,31 +10,45 @@ namespace cdyn {
 
 StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m,
                            bool condense)
-    : p_(p), solver_(solver), dt_(dt), M_(p.mass->matrix()) {
+    : p_(p), solver_(solver), dt_(dt), a_(a), condense_(condense), M_(p.mass->matrix()) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("dt", "must be positive and finite (got " + to_text(dt) + ")");
-  const double k = m / (dt * dt);
-  qp_.lower = p.lower;
-  qp_.upper = p.upper;
   if (!M_) {
-    SaddleForm f = p.mass->saddle(SparseMatrix(a * p.A), k);
-    if (!same_matrix(f.B, f.C)) {
-      qp_.saddle = std::move(f);
-      return;
-    }
+    const SaddleForm f = p.mass->saddle(SparseMatrix(), 1.0);
     // H^h = W^h (P1/P1): B = C, so M = Bᵀ C⁻¹ B = C, the consistent mass — sparse after
     // all; an explicit S (one Cholesky factor) instead of the saddle form (an LU of a
     // matrix twice the size per active set).
-    M_ = f.C;
+    if (same_matrix(f.B, f.C)) M_ = f.C;
   }
-  qp_.S = a * p.A + k * *M_;
+  build(m);
+}
+
+void StepQPScheme::build(double m) {
+  m_ = m;
+  const double k = m / (dt_ * dt_);
+  qp_.lower = p_.lower;
+  qp_.upper = p_.upper;
+  qp_.saddle.reset();
+  condensation_.reset();
+  has_last_ = false;
+  if (!M_) {
+    qp_.S = SparseMatrix();
+    qp_.saddle = p_.mass->saddle(SparseMatrix(a_ * p_.A), k);
+    return;
+  }
+  qp_.S = a_ * p_.A + k * *M_;
   qp_.S.makeCompressed();
-  if (!condense) return;
-  DiagonalCondensation c(qp_.S, p.lower, p.upper);
+  if (!condense_) return;
+  DiagonalCondensation c(qp_.S, p_.lower, p_.upper);
   if (c.n_condensed() == 0) return;
   qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
-  qp_.lower = c.kept(p.lower);
-  qp_.upper = c.kept(p.upper);
+  qp_.lower = c.kept(p_.lower);
+  qp_.upper = c.kept(p_.upper);
   condensation_.emplace(std::move(c));
+}
+
+void StepQPScheme::set_mass_factor(double m) {
+  if (m == m_) return;
+  build(m);
 }
 
 Energy StepQPScheme::energy(const State& s) const {

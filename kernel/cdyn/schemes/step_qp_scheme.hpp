@@ -50,11 +50,20 @@ class StepQPScheme : public TimeScheme {
   // The explicit M when the mass model has one (H^h = P0, classical models), or C when B = C.
   const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
 
+  // S = aA + (m/dt²) M with another m (the bounds back to the problem's K̄^h): a new S
+  // for the solver, which then factorizes it again.
+  void set_mass_factor(double m);
+  double mass_factor() const { return m_; }
+
   const ConstrainedProblem& p_;
   StepSolver& solver_;
   double dt_;
 
  private:
+  void build(double m);
+
+  double a_, m_ = 0.0;
+  bool condense_;
   std::optional<SparseMatrix> M_;
   std::optional<DiagonalCondensation> condensation_;
   BoundQP qp_;
@@ -70,9 +79,11 @@ namespace cdyn {
 std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt,
                                                 bool condense = true);
 std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt,
-                                          bool condense = true);
+                                          const SchemeParameters& parameters);
 std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt,
-                                              bool condense = true);
+                                              const SchemeParameters& parameters);
+std::unique_ptr<TimeScheme> make_discrete_gradient(const ConstrainedProblem& p, StepSolver& solver, double dt,
+                                                   const SchemeParameters& parameters);
 std::unique_ptr<TimeScheme> make_newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta,
                                          double gamma, bool condense = true);
 std::unique_ptr<TimeScheme> make_paoli_schatzman(const ConstrainedProblem& p, StepSolver& solver, double dt,

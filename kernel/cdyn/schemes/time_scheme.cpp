@@ -6,16 +6,27 @@
 
 namespace cdyn {
 
+std::string to_string(FullSteps f) {
+  switch (f) {
+    case FullSteps::Solved: return "solved";
+    case FullSteps::Reconstructed: return "reconstructed";
+    case FullSteps::Extrapolated: return "extrapolated";
+  }
+  return "?";
+}
+
 std::vector<std::string> time_scheme_names() {
-  return {"backward_euler", "midpoint", "midpoint_end", "newmark", "paoli_schatzman", "energy_conserving"};
+  return {"backward_euler", "midpoint", "midpoint_end", "newmark", "paoli_schatzman", "energy_conserving",
+          "discrete_gradient"};
 }
 
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
                                              StepSolver& solver, double dt, const SchemeParameters& parameters) {
   const bool c = parameters.condense;
   if (name == "backward_euler") return make_backward_euler(problem, solver, dt, c);
-  if (name == "midpoint") return make_midpoint(problem, solver, dt, c);
-  if (name == "midpoint_end") return make_midpoint_end(problem, solver, dt, c);
+  if (name == "midpoint") return make_midpoint(problem, solver, dt, parameters);
+  if (name == "midpoint_end") return make_midpoint_end(problem, solver, dt, parameters);
+  if (name == "discrete_gradient") return make_discrete_gradient(problem, solver, dt, parameters);
   if (name == "newmark") return make_newmark(problem, solver, dt, parameters.beta, parameters.gamma, c);
   if (name == "paoli_schatzman") return make_paoli_schatzman(problem, solver, dt, parameters.restitution);
   if (name == "energy_conserving") return make_energy_conserving(problem, solver, dt, c);

@@ -35,7 +35,20 @@ struct StepStats {
   // throws NumericalError and a scheme never hands back an unconverged step.  A
   // caller that opts out must check this flag (docs/stability.md, "Solver stress").
   bool converged = true;
+  // The full-step reconstruction of eq. (14) (schemes/full_step.hpp), when the scheme
+  // makes one: its QP's KKT residual, and the energy corrections of discrete_gradient.
+  double reconstruction_kkt = 0.0;
+  int energy_iterations = 0;  // discrete_gradient: step QPs solved (1 without a switch)
 };
+
+// How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):
+//  - solved: the step's QP has U^{n+1} as unknown and minimizes the potential at t^{n+1}
+//    on Ker B (backward_euler, newmark), or Ker B = {0} (energy_conserving and
+//    paoli_schatzman, which need an invertible M);
+//  - reconstructed: eq. (14) solved after the step (schemes/full_step.hpp);
+//  - extrapolated: U^{n+1} = 2U^{n+½} − Uⁿ as it comes (no local basis of Ker B).
+enum class FullSteps { Solved, Reconstructed, Extrapolated };
+std::string to_string(FullSteps f);
 
 // The discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU (seed, Theorem 2), split in its parts.
 struct Energy {
@@ -53,6 +66,13 @@ class TimeScheme {
   // (docs/schemes.md): J(Uⁿ, Vⁿ) for the one-step schemes; the three-level schemes
   // evaluate the potential part between the last two displacements.
   virtual Energy energy(const State& s) const = 0;
+  // Makes the initial state one the scheme's energy identity starts from: a scheme that
+  // reconstructs its full steps (eq. 14) replaces the massless part of U⁰ by its
+  // static solution — same B U⁰, the same dynamics.  Call once before the first step
+  // (the first step calls it otherwise).
+  virtual void initialize(State& s) { (void)s; }
+  // How the full-step states get their massless part.
+  virtual FullSteps full_steps() const { return FullSteps::Solved; }
 };
 
 // The parameters of the schemes that have some (docs/schemes.md).
@@ -60,6 +80,13 @@ struct SchemeParameters {
   double beta = 0.25, gamma = 0.5;  // newmark (the trapezoidal rule by default)
   double restitution = 0.0;         // paoli_schatzman's e ∈ [0, 1]
   bool condense = true;             // the implicit schemes: eliminate the bubbles (schemes/step_qp_scheme.hpp)
+  // midpoint, midpoint_end, discrete_gradient: solve eq. (14) for the massless part of
+  // every full-step state (schemes/full_step.hpp), to `tol` (kkt_residual).
+  bool reconstruct = true;
+  double tol = 1e-10;
+  // discrete_gradient: the largest energy error of a step, relative to the energy scale
+  // ½VᵀCV + |Ψ| of the step (docs/schemes.md, "The discrete gradient scheme").
+  double energy_tol = 1e-13;
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
