@@ -62,7 +62,13 @@ int main() {
   QPOptions options;
   options.tol = 1e-12;  // an inexact contact dof would be carried forward by U^{n+1} = 2X − Uⁿ
   auto solver = make_step_solver("pdas", options);
-  auto scheme = make_time_scheme("midpoint", problem, *solver, dt);
+  // After each step the massless part of U^{n+1} (Ker B: here the bubbles' share of the
+  // vertex values) is made the static solution of eq. (14) for the step's B U^{n+1}
+  // (schemes/full_step.hpp), solved as tightly as the step: a physical state, on or above
+  // the obstacle, whose J the seed's Theorem 2 is about.
+  SchemeParameters parameters;
+  parameters.tol = options.tol;
+  auto scheme = make_time_scheme("midpoint", problem, *solver, dt, parameters);
 
   // ----- 4. The initial state ------------------------------------------------------------
   // U⁰ interpolates u₀ = 0.02 on the free dofs (its bubbles are 0: u₀ is affine);
@@ -70,6 +76,7 @@ int main() {
   State s;
   s.U = problem.unknowns(problem.W->interpolate([](double, double, double) { return 0.02; }));
   s.V = initial_velocity(problem, Eigen::VectorXd::Zero(problem.n_free()));
+  scheme->initialize(s);  // U⁰'s massless part from eq. (14), as every full step's
   const double J0 = scheme->energy(s).total();
 
   // ----- 5. The time loop ----------------------------------------------------------------

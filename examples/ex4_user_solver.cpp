@@ -104,12 +104,16 @@ int main() {
   QPOptions options;
   options.tol = tol;
   auto pdas = make_step_solver("pdas", options);
-  auto scheme_j = make_time_scheme("midpoint", p, jacobi, dt);
-  auto scheme_p = make_time_scheme("midpoint", p, *pdas, dt);
+  SchemeParameters parameters;
+  parameters.tol = tol;  // the full-step reconstruction of eq. (14) (the kernel's own pdas)
+  auto scheme_j = make_time_scheme("midpoint", p, jacobi, dt, parameters);
+  auto scheme_p = make_time_scheme("midpoint", p, *pdas, dt, parameters);
 
   State sj, sp;
   sj.U = sp.U = p.unknowns(p.W->interpolate([](double, double, double) { return 0.02; }));
   sj.V = sp.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
+  scheme_j->initialize(sj);
+  scheme_p->initialize(sp);
   const double J0 = scheme_p->energy(sp).total();
 
   // ----- 4. Step both and compare ----------------------------------------------------------

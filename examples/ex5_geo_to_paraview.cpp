@@ -59,10 +59,13 @@ int main(int argc, char** argv) {
     QPOptions options;
     options.tol = 1e-12;
     auto solver = make_step_solver("pdas", options);
-    auto scheme = make_time_scheme("midpoint", p, *solver, dt);
+    SchemeParameters parameters;
+    parameters.tol = options.tol;  // the full-step reconstruction of eq. (14), as tight as the step
+    auto scheme = make_time_scheme("midpoint", p, *solver, dt, parameters);
     State s;
     s.U = p.unknowns(p.W->interpolate([](double, double, double) { return 0.02; }));
     s.V = initial_velocity(p, Eigen::VectorXd::Zero(p.n_free()));
+    scheme->initialize(s);
 
     // ----- 4. The time loop, writing the fields every 20 steps ----------------------------
     // FieldsWriter takes full coefficient vectors on W^h (Dirichlet values included:

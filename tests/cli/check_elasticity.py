@@ -66,7 +66,9 @@ m = rho * area("disk.geo")
 impact = s["impact"]
 free = [r for r in h if r["t"] < impact["t_first_contact"] - 1e-12]
 err_p = max(abs(r["py"] + m * (v0 + g * r["t"])) / (m * v0) for r in free)
-err_J = max(abs(r["E_total"] - h[0]["E_total"]) / h[0]["E_total"] for r in free)
+# J: the steps before the last free one, whose full-step state (the solution of eq. (14),
+# docs/schemes.md) already touches the plane although its half step did not.
+err_J = max(abs(r["E_total"] - h[0]["E_total"]) / h[0]["E_total"] for r in free[:-1])
 # Round-off only: 50 linear solves (no active constraint); docs/schemes.md (midpoint) gives about
 # 1e-11 over 800 steps for the membrane; here 4.7e-12 and 1.9e-12: asserted 1e-10.
 check(len(free) == 51 and err_p < 1e-10, f"disk free flight: momentum = -rho|Omega|(v0 + g t) to {err_p:.1e} over {len(free)} steps")

@@ -11,6 +11,10 @@ the same data, and compares step by step (docs/verification.md):
   - the centre displacement to 1e-8 (measured ~2e-11);
   - the number of active vertex constraints, exactly (Ipopt: X < 1e-8; pdas: its
     active set) — measured identical at every step.
+The script implements the midpoint rule with U^{n+1} = 2U^{n+½} − Uⁿ as it comes, so
+cdyn runs it the same way: time.reconstruct = false (without it cdyn replaces the
+massless part of U^{n+1} by the solution of eq. (14), docs/schemes.md, and the
+potential energy it reports is that of the reconstructed state).
 
     compare_dynamic.py CDYN FREEFEM_SCRIPT WORKDIR PAIR SCHEME STEPS
 """
@@ -36,7 +40,8 @@ def main():
     cdyn_pair = "P1+/P0" if pair == "P1b" else "P1/P1"
     subprocess.run([cdyn, "run", "--out", out, "--quiet", "--set", "mesh.n=10", "--set", f"method.pair={cdyn_pair}",
                     "--set", f"time.scheme={scheme}", "--set", "time.dt=0.001", "--set", f"time.T={int(steps) * 0.001}",
-                    "--set", "output.fields=false", "--set", "output.plots=false"], check=True)
+                    "--set", "output.fields=false", "--set", "output.plots=false", "--set", "time.reconstruct=false"],
+                   check=True)
     with open(ff_csv) as f:
         ff = list(csv.DictReader(f))
     with open(os.path.join(out, "history.csv")) as f:

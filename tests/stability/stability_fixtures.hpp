@@ -22,6 +22,7 @@ using testing::kMethods;
 using testing::label;
 using testing::membrane;
 using testing::Method;
+using testing::plain;
 
 // What a run of `steps` steps did.
 struct RunRecord {
@@ -45,7 +46,9 @@ struct RunRecord {
 };
 
 // Runs `steps` steps of `scheme` from `s` (updated), recording the above.
+// (scheme.initialize(s) first: the energy identity starts from the scheme's own U⁰.)
 inline RunRecord run(TimeScheme& scheme, const ConstrainedProblem& p, State& s, int steps) {
+  scheme.initialize(s);
   RunRecord r;
   r.J0 = scheme.energy(s).total();
   long total_iterations = 0;

@@ -45,14 +45,14 @@ struct FallingRun {
   Eigen::VectorXd U;  // the final displacement
 };
 
-FallingRun falling_bar(const std::string& scheme_name, double v0, double d) {
+FallingRun falling_bar(const std::string& scheme_name, double v0, double d, const SchemeParameters& prm = {}) {
   const Mesh mesh = interval_mesh(20);
   FallingBar b;
   b.v0 = v0;
   b.d = d;
   const ConstrainedProblem p = bar(mesh, kP1BubbleP0, false, -d);
   auto solver = make_step_solver("pdas", tight());
-  auto scheme = make_time_scheme(scheme_name, p, *solver, 0.01);
+  auto scheme = make_time_scheme(scheme_name, p, *solver, 0.01, prm);
   State s = falling_bar_state(p, b);
   FallingRun out{run(*scheme, p, s, 300), s.U};
   char what[128];
@@ -68,7 +68,8 @@ constexpr int kMaxQPIterations = 5;
 
 TEST(FastImpacts, FallingBarAtHundredTimesTheSpeed) {
   for (const std::string scheme : {"backward_euler", "midpoint_end", "midpoint"}) {
-    const RunRecord r = falling_bar(scheme, 30.0, 0.1).record;
+    // (midpoint: its own states, U^{n+1} = 2U^{n+½} − Uⁿ, whose identity is checked)
+    const RunRecord r = falling_bar(scheme, 30.0, 0.1, scheme == "midpoint" ? plain() : SchemeParameters{}).record;
     ASSERT_TRUE(r.finite) << scheme;
     if (scheme == "midpoint") {
       // its U^{n+1} = 2U^{n+½} − Uⁿ is not the constrained unknown: at the first step

@@ -56,6 +56,15 @@ inline double max_energy_drift(TimeScheme& scheme, State& s, int steps, double J
   return drift;
 }
 
+// The schemes' own algebra on the states they compute, without the full-step
+// reconstruction of eq. (14) (schemes/full_step.hpp): the identities of docs/schemes.md
+// written for the midpoint's U^{n+1} = 2U^{n+½} − Uⁿ.
+inline SchemeParameters plain() {
+  SchemeParameters prm;
+  prm.reconstruct = false;
+  return prm;
+}
+
 inline QPOptions tight() {
   QPOptions o;
   o.tol = 1e-13;

@@ -39,6 +39,7 @@ struct StepStats {
   // makes one: its QP's KKT residual, and the energy corrections of discrete_gradient.
   double reconstruction_kkt = 0.0;
   int energy_iterations = 0;  // discrete_gradient: step QPs solved (1 without a switch)
+  int substeps = 0;           // discrete_gradient: halvings of dt at a stiff switch
 };
 
 // How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):
@@ -84,9 +85,10 @@ struct SchemeParameters {
   // every full-step state (schemes/full_step.hpp), to `tol` (kkt_residual).
   bool reconstruct = true;
   double tol = 1e-10;
-  // discrete_gradient: the largest energy error of a step, relative to the energy scale
-  // ½VᵀCV + |Ψ| of the step (docs/schemes.md, "The discrete gradient scheme").
-  double energy_tol = 1e-13;
+  // discrete_gradient: the largest energy error of a step, relative to the size of the
+  // terms of ΔH = ΔK + ΔΨ (½VᵀCV, |Ψ| and the kinetic change's two parts: the round-off
+  // of ΔH is a few ε of them; docs/schemes.md, "The discrete gradient scheme").
+  double energy_tol = 1e-12;
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
