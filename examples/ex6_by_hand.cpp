@@ -148,7 +148,12 @@ int main() {
     if (k > 0) {
       qp.r = 4 * c * c * (M * U) + 2 * c * (B.transpose() * V) + L;
       X = solver->solve(qp, k > 1 ? &X : nullptr);
-      const Vector U1 = 2.0 * X.X - U;            // U^{n+1} = 2U^{n+½} − Uⁿ
+      // U^{n+1} = 2U^{n+½} − Uⁿ, as the seed's experiments take it.  Its massless part
+      // (Ker B) is an extrapolation that may dip below the obstacle (the violation printed
+      // at the end); cdyn's midpoint replaces it by the static solution of eq. (14), which
+      // changes no massful quantity (schemes/full_step.hpp; compared with
+      // `cdyn run --set time.reconstruct=false`).
+      const Vector U1 = 2.0 * X.X - U;
       V = 2.0 * c * (CinvB * (U1 - U)) - V;       // C(Vⁿ + V^{n+1})/2 = B(U^{n+1} − Uⁿ)c
       U = U1;
       violation = std::max(violation, (lower - U).maxCoeff());  // only U^{n+½} is constrained

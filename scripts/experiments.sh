@@ -25,6 +25,14 @@ for pair in P1+/P0 P1/P0; do
       --set time.scheme=backward_euler
 done
 run membrane_midpoint_P1b_P0_h005 --set mesh.n=20
+# The seed's algorithm as published: U^{n+1} = 2U^{n+½} − Uⁿ left as it comes (no
+# reconstruction of eq. (14)), and the energy-exact scheme, for P1+/P0.
+for pair in P1+/P0 P2/P1 P1+/P1; do
+  run "membrane_midpoint_extrapolated_$(echo "$pair" | sed 's/+/b/;s#/#_#')" --set mesh.n=10 --set method.pair="$pair" \
+      --set time.reconstruct=false
+done
+run membrane_discrete_gradient_P1b_P0 --set mesh.n=10 --set time.scheme=discrete_gradient
+run membrane_discrete_gradient_P1b_P0_h005 --set mesh.n=20 --set time.scheme=discrete_gradient
 # The same membrane with the classical schemes of the comparison (standard mass).
 run membrane_energy_conserving_consistent --set mesh.n=10 --set method.mass=consistent --set time.scheme=energy_conserving
 run membrane_paoli_schatzman_lumped --set mesh.n=10 --set method.mass=lumped --set time.scheme=paoli_schatzman \

@@ -267,7 +267,8 @@ const Method kP1P0{Element::P1, "P0", "P1/P0"};
 struct Errors {
   double l2 = 0.0;       // ‖u_h(T) − u(T)‖_L2(0,L)
   double contact = 0.0;  // max_n |u_h(0,tⁿ) − u(0,tⁿ)|
-  double energy = 0.0;   // max_n |Jⁿ − J₀|/J₀
+  double energy = 0.0;   // max_n |Jⁿ − J⁰|/J⁰, J⁰ the discrete energy of the scheme's U⁰
+  double start = 0.0;    // |J⁰ − J₀|/J₀ against the exact energy (U⁰'s massless part from eq. 14)
   double impulse = 0.0;  // |Σ λⁿ dt − ∫₀ᵀ R dt| / ∫₀ᵀ R dt
 };
 
@@ -300,16 +301,19 @@ Errors run_bar(const Case& k, const Method& m, const std::string& scheme_name, i
   State s;
   s.U = p.bc->restrict(p.W->interpolate(u, 0.0));
   s.V = initial_velocity(p, p.bc->restrict(p.W->interpolate(v, 0.0)));
+  scheme->initialize(s);  // (a reconstructing scheme: U⁰'s massless part from eq. 14)
   const int contact = p.bc->free_index(p.W->vertex_dof(0));  // interval_mesh: vertex 0 is x = 0
 
   Errors e;
+  const double J0 = scheme->energy(s).total();
+  e.start = std::abs(J0 - k.energy0) / k.energy0;
   double impulse = 0.0;
   const int steps = static_cast<int>(std::lround(T / dt));
   for (int i = 0; i < steps; ++i) {
     scheme->step(s);
     impulse += s.reaction[contact] * dt;  // the QP reaction is R at t^{n+½} (docs/bar_impact.md)
     const double J = p.mass->kinetic_energy(s.V) + p.potential_energy(s.U, s.t);
-    e.energy = std::max(e.energy, std::abs(J - k.energy0) / k.energy0);
+    e.energy = std::max(e.energy, std::abs(J - J0) / J0);
     e.contact = std::max(e.contact, std::abs(s.U[contact] - k.u(0.0, s.t)));
   }
   e.l2 = l2_error(*p.W, p.full(s.U), u, s.t);
@@ -330,21 +334,21 @@ struct Sweep {
 Sweep sweep(const Case& k, const Method& m, const std::string& scheme, double ratio,
             const std::vector<int>& meshes = kMeshes) {
   Sweep out;
-  std::printf("%s, %s, %s, c dt/h = %g\n  %5s %9s %10s %5s %10s %5s %10s %5s %10s %5s\n", k.name.c_str(),
+  std::printf("%s, %s, %s, c dt/h = %g\n  %5s %9s %10s %5s %10s %5s %10s %5s %10s %5s %10s\n", k.name.c_str(),
               m.label.c_str(), scheme.c_str(), ratio, "n", "dt", "L2(T)", "rate", "contact", "rate", "energy",
-              "rate", "impulse", "rate");
+              "rate", "impulse", "rate", "J0 offset");
   for (int n : meshes) {
     const double dt = ratio * k.L / n / k.c;
     const Errors e = run_bar(k, m, scheme, n, dt, k.T);
     if (out.e.empty()) {
-      std::printf("  %5d %9.6f %10.3e %5s %10.3e %5s %10.3e %5s %10.3e %5s\n", n, dt, e.l2, "", e.contact, "",
-                  e.energy, "", e.impulse, "");
+      std::printf("  %5d %9.6f %10.3e %5s %10.3e %5s %10.3e %5s %10.3e %5s %10.3e\n", n, dt, e.l2, "", e.contact,
+                  "", e.energy, "", e.impulse, "", e.start);
     } else {
       const Errors& q = out.e.back();
       const double r = std::log(static_cast<double>(n) / out.n.back());
-      std::printf("  %5d %9.6f %10.3e %5.2f %10.3e %5.2f %10.3e %5.2f %10.3e %5.2f\n", n, dt, e.l2,
+      std::printf("  %5d %9.6f %10.3e %5.2f %10.3e %5.2f %10.3e %5.2f %10.3e %5.2f %10.3e\n", n, dt, e.l2,
                   std::log(q.l2 / e.l2) / r, e.contact, std::log(q.contact / e.contact) / r, e.energy,
-                  std::log(q.energy / e.energy) / r, e.impulse, std::log(q.impulse / e.impulse) / r);
+                  std::log(q.energy / e.energy) / r, e.impulse, std::log(q.impulse / e.impulse) / r, e.start);
     }
     out.n.push_back(n), out.dt.push_back(dt), out.e.push_back(e);
   }
@@ -379,13 +383,18 @@ Case falling() {
 // Midpoint (constraint on the half step) with the two methods that remove the inertia of
 // the contact node: the seed's P1+/P0 (condition (12) holds: β ≈ 0.84) and the
 // redistributed mass.  Measured (docs/bar_impact.md, c dt/h = ½, n = 20 → 160) overall
-// rates: L2(T) 0.57–1.25, contact end 0.63–0.97, impulse 0.57–1.18, energy 0.95–1.03.
-// Asserted: > 0.45 (expected ~2/3: the pointwise error of a kinked wave under a
-// second-order dispersive scheme is O(h^{2/3}), and the contact end's error feeds the
-// whole bar), > 0.8 for the energy (first order).  P1+/P0 lowers every error at every
-// refinement; the redistributed mass does at these n, but not always beyond (from n = 160
-// to 320, or with T = 6, an L2 error grows by up to 2.9×), so only its energy error is
-// required to decrease at each step.
+// rates: L2(T) 0.57–1.25, contact end 0.63–0.97, impulse 0.57–1.18.  Asserted: > 0.45
+// (expected ~2/3: the pointwise error of a kinked wave under a second-order dispersive
+// scheme is O(h^{2/3}), and the contact end's error feeds the whole bar).  P1+/P0 lowers
+// every error at every refinement; the redistributed mass does at these n, but not
+// always beyond (from n = 160 to 320, or with T = 6, an L2 error grows by up to 2.9×).
+// The energy, measured on the physical full steps (eq. 14) against the discrete J⁰:
+// the midpoint rule is exact except on the steps where the active set switches, whose
+// error does not follow a rate (measured at most 4.0e-4 J⁰ at n = 40, below 5e-6 from
+// n = 160 on the clamped bar, first order 4.8e-3 … 6.0e-4 (n = 20 … 160) on the falling bar, whose
+// contact phase sees many switches); asserted below 1e-2 J⁰ on every mesh.
+// (Before the reconstruction the extrapolated U^{n+1} = 2U^{n+½} − Uⁿ made this error
+// 2.8e-2 … 7.8e-2 J₀ at n = 40, docs/bar_impact.md.)
 TEST(BarConvergence, MidpointWellPosedMethods) {
   for (const Case& k : {clamped(), falling()})
     for (const Method& m : {kP1bP0, kRedistributed}) {
@@ -395,7 +404,25 @@ TEST(BarConvergence, MidpointWellPosedMethods) {
       expect_convergence(s, &Errors::l2, 0.45, what + ", L2 error at T", regular);
       expect_convergence(s, &Errors::contact, 0.45, what + ", contact-end error", regular);
       expect_convergence(s, &Errors::impulse, 0.45, what + ", contact impulse", regular);
-      expect_convergence(s, &Errors::energy, 0.8, what + ", energy error");
+      for (std::size_t i = 0; i < s.e.size(); ++i) EXPECT_LT(s.e[i].energy, 1e-2) << what << ", n = " << s.n[i];
+    }
+}
+
+// The energy-exact scheme on the same runs: J⁰ kept to 1e-9 (measured at most 1.6e-10
+// over n = 20 … 320 for both bars and both methods, docs/bar_impact.md), while the
+// displacement errors stay the midpoint's: the L2 error at T and the contact end's error
+// within 10 % of them on every mesh (measured within 2 %; the correction acts only on
+// the switching steps).
+TEST(BarConvergence, DiscreteGradientIsExactAndAsAccurateAsMidpoint) {
+  for (const Case& k : {clamped(), falling()})
+    for (const Method& m : {kP1bP0, kRedistributed}) {
+      const Sweep dg = sweep(k, m, "discrete_gradient", 0.5), mp = sweep(k, m, "midpoint", 0.5);
+      const std::string what = k.name + ", " + m.label + ", discrete_gradient";
+      for (std::size_t i = 0; i < dg.e.size(); ++i) {
+        EXPECT_LT(dg.e[i].energy, 1e-9) << what << ", n = " << dg.n[i];
+        EXPECT_LT(dg.e[i].l2, 1.1 * mp.e[i].l2) << what << ", n = " << dg.n[i];
+        EXPECT_LT(dg.e[i].contact, 1.1 * mp.e[i].contact) << what << ", n = " << dg.n[i];
+      }
     }
 }
 
@@ -484,6 +511,9 @@ TEST(BarConvergence, DISABLED_Study) {
     for (const char* scheme : {"midpoint", "midpoint_end", "backward_euler"})
       for (const Method& m : {kP1bP0, kRedistributed, kP1P1, kP1P0})
         for (double ratio : {1.0, 0.5, 0.25}) sweep(k, m, scheme, ratio, meshes);
+  for (const Case& k : {clamped(), falling()})
+    for (const Method& m : {kP1bP0, kRedistributed})
+      for (double ratio : {1.0, 0.5, 0.25}) sweep(k, m, "discrete_gradient", ratio, meshes);
 }
 
 }  // namespace
