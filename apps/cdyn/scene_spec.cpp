@@ -195,7 +195,7 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
     throw InputError("time.T: T/dt = " + std::to_string(steps) +
                      " steps is more than a run can take (at most 2147483647)");
   t.n_steps = static_cast<int>(steps);
-  t.scheme = s.string("time.scheme", "midpoint");
+  t.scheme = s.string("time.scheme", "auto");  // auto: recommended_scheme() of the problem
   t.parameters.beta = s.number("time.beta", t.parameters.beta);
   t.parameters.gamma = s.number("time.gamma", t.parameters.gamma);
   t.parameters.restitution = s.number("time.restitution", t.parameters.restitution);

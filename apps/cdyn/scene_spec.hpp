@@ -77,7 +77,7 @@ struct SceneSpec {
   } initial;
 
   struct Time {
-    std::string scheme = "midpoint";
+    std::string scheme = "auto";  // auto: the kernel's recommended_scheme() for the problem
     double dt = 0.0, T = 0.0;
     int n_steps = 0;
     SchemeParameters parameters;

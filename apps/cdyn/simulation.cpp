@@ -185,7 +185,7 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.n_steps = s.time.n_steps;
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
-  sim.scheme_name = s.time.scheme;
+  sim.scheme_name = s.time.scheme == "auto" ? recommended_scheme(p) : s.time.scheme;
   sim.solver_name = s.solver.name;
   sim.tol = s.solver.options.tol;
   with_scene_keys(s, [&] {

@@ -2,6 +2,7 @@
 #include "cdyn/schemes/time_scheme.hpp"
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/schemes/full_step.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
@@ -33,6 +34,10 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
   std::string known;
   for (const auto& n : time_scheme_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("scheme", "unknown scheme '" + name + "' (available: " + known + ")");
+}
+
+std::string recommended_scheme(const ConstrainedProblem& problem) {
+  return FullStepReconstruction(problem, 1e-10).needed() ? "discrete_gradient" : "midpoint_end";
 }
 
 Eigen::VectorXd initial_velocity(const ConstrainedProblem& problem, const Eigen::VectorXd& Udot0) {

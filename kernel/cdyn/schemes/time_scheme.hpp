@@ -92,12 +92,18 @@ struct SchemeParameters {
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
-// energy_conserving.  The problem and the solver must outlive the scheme.  Throws
+// energy_conserving | discrete_gradient.  The problem and the solver must outlive the scheme.  Throws
 // InputError for an unknown name, dt <= 0, parameters out of range, or a mass model
 // the scheme does not accept (paoli_schatzman needs an invertible M in W^h).
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
                                              StepSolver& solver, double dt, const SchemeParameters& parameters = {});
 std::vector<std::string> time_scheme_names();
+
+// The scheme cdyn recommends for a problem (docs/schemes.md, "which scheme is the
+// default"): discrete_gradient where the full steps of eq. (14) exist and move every
+// constrained unknown (P1+/P0, the redistributed mass), midpoint_end otherwise — the two
+// never gain energy beyond round-off.
+std::string recommended_scheme(const ConstrainedProblem& problem);
 
 // The initial velocity V⁰ in H^h from a displacement rate U̇⁰ on the free dofs:
 // C V⁰ = B U̇⁰ (seed eq. 11's initial condition).
