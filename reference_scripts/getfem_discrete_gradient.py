@@ -133,7 +133,11 @@ def main():
         V1 = 2 * c * (Cinv @ (B @ (W1 - U))) - V
         return W1, V1
 
-    U = reconstruct((1.0 - x) / 2.0)  # u₀ interpolated (bubbles 0), its Ker B part from (14)
+    # u₀ = (1 − x)/2 in the hierarchical basis: the vertex values, bubbles 0 (u₀ is affine);
+    # its Ker B part from (14)
+    at_vertex = np.zeros(len(x))
+    at_vertex[vertex] = 1.0
+    U = reconstruct(at_vertex * (1.0 - x) / 2.0)
     V = np.zeros(B.shape[0])
 
     def energy():

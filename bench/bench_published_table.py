@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""bench_published_table.py — the seed author's published table (docs/references.md,
+REFERENCES: relative energy error at T of the membrane, P1+/P0 and P2/P1, N_X = 10, 20,
+40, dt = 0.01 … 0.0004, midpoint, T = 0.8) re-run with cdyn, for the three ways of
+treating the full steps (docs/schemes.md):
+
+  - midpoint with U^{n+1} = 2U^{n+½} − Uⁿ as it comes (the seed's algorithm),
+  - midpoint with physical full steps (eq. 14; P1+/P0),
+  - discrete_gradient (P1+/P0).
+
+For each cell: |J(T) − J0|/J0, max_t |J − J0|/J0, the largest violation at the full steps
+and the wall time per step; the discrete gradient's time against the reconstructed
+midpoint's.  One core (OPENBLAS_NUM_THREADS=1).
+
+    /usr/bin/python3 bench/bench_published_table.py build/apps/cdyn out/published
+"""
+import json
+import os
+import subprocess
+import sys
+
+PUBLISHED = {  # the seed author's |J(T) − J0|/J0 in %
+    ("P1+/P0", 10): [7.50, 3.06, 0.493, 0.0267], ("P1+/P0", 20): [27.7, 3.25, 0.348, 0.060],
+    ("P1+/P0", 40): [96.9, 22.8, 0.856, 0.242], ("P2/P1", 10): [0.687, 0.027, 0.040, 8.3e-4],
+    ("P2/P1", 20): [1.29, 0.41, 0.0125, 0.0042]}
+DTS = [0.01, 0.004, 0.001, 0.0004]
+
+
+def run(cdyn, out, pair, n, dt, scheme, reconstruct):
+    name = f"{pair.replace('/', '_').replace('+', 'b')}_n{n}_dt{dt}_{scheme}_{'r' if reconstruct else 'x'}"
+    d = os.path.join(out, name)
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    subprocess.run([cdyn, "run", "--out", d, "--quiet", "--set", f"method.pair={pair}", "--set", f"mesh.n={n}",
+                    "--set", f"time.dt={dt}", "--set", f"time.scheme={scheme}", "--set",
+                    f"time.reconstruct={'true' if reconstruct else 'false'}", "--set", "output.fields=false",
+                    "--set", "output.plots=false"], check=True, env=env)
+    with open(os.path.join(d, "summary.json")) as f:
+        s = json.load(f)
+    return s
+
+
+def main():
+    cdyn, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    print("| pair | N_X | dt | published % | extrapolated: J(T) %, max_t %, violation | reconstructed: J(T) %, max_t %, "
+          "violation | discrete_gradient: J(T) %, max_t %, violation | s/step: midpoint, DG (ratio) |")
+    print("|---|---|---|---|---|---|---|---|")
+    worst_dg, worst_ratio = 0.0, 0.0
+    for (pair, n), published in PUBLISHED.items():
+        for dt, pub in zip(DTS, published):
+            cells = []
+            x = run(cdyn, out, pair, n, dt, "midpoint", False)
+            cells.append(x)
+            if pair == "P1+/P0":
+                r = run(cdyn, out, pair, n, dt, "midpoint", True)
+                g = run(cdyn, out, pair, n, dt, "discrete_gradient", True)
+            else:
+                r = g = None
+
+            def fmt(s):
+                if s is None:
+                    return "—"
+                err = abs(s["E_final"] - s["E0"]) / abs(s["E0"]) * 100
+                return f"{err:.3g}, {s['E_rel_drift'] * 100:.3g}, {s['max_violation']:.1e}"
+            if g is not None:
+                ratio = g["s_per_step"] / r["s_per_step"]
+                worst_dg = max(worst_dg, g["E_rel_drift"])
+                worst_ratio = max(worst_ratio, ratio)
+                cost = f"{r['s_per_step'] * 1e3:.3f} ms, {g['s_per_step'] * 1e3:.3f} ms ({ratio:.2f})"
+            else:
+                cost = f"{x['s_per_step'] * 1e3:.3f} ms, —"
+            print(f"| {pair} | {n} | {dt} | {pub} | {fmt(x)} | {fmt(r)} | {fmt(g)} | {cost} |")
+    print(f"\ndiscrete_gradient: max over the cells of max_t |J - J0|/J0 = {worst_dg:.2e}; "
+          f"largest time ratio DG/midpoint = {worst_ratio:.2f}")
+
+
+if __name__ == "__main__":
+    main()
