@@ -35,6 +35,8 @@ echo "== (e) speed against error (cdyn study)"
 "$BUILD/apps/cdyn" study "$ROOT/data/scenes/bar.toml" --vary method.pair=P1+/P0,P1/P1,P1/P0 \
     --vary time.scheme=midpoint,backward_euler --vary mesh.n=20,40,80,160 --vary time.dt=0.02,0.01,0.005 \
     --out "$OUT/study_bar"
+echo "== (g) the published table: extrapolated, reconstructed and discrete_gradient full steps"
+$PY "$ROOT/bench/bench_published_table.py" "$BUILD/apps/cdyn" "$OUT/published"
 echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
