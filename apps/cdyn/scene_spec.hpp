@@ -65,11 +65,22 @@ struct SceneSpec {
     std::vector<Expression> traction;
   } neumann;
 
+  // Elasticity: one rigid obstacle (problems/rigid_obstacle.hpp), a plane through p(t)
+  // with normal n, or a surface given by its gap function φ(x, y, t).
+  struct Rigid {
+    std::string key;                  // "obstacle" or "obstacles[k]", for messages
+    std::string name;
+    std::vector<std::string> where;   // Γ_C: part names, or "boundary" (every boundary facet)
+    std::vector<Expression> point;    // p(t), two expressions (plane)
+    Point normal{0.0, 1.0};           // n (plane)
+    std::optional<Expression> gap;    // φ(x, y, t) (a curved obstacle), instead of point/normal
+  };
+
   struct Obstacle {
     bool enabled = true;
-    std::vector<std::string> where;   // "vertices" or part names (Γ_C)
-    Expression g;                      // scalar models: the lower bound u ≥ g
-    Point point, normal{0.0, 1.0};     // elasticity: the rigid plane
+    std::vector<std::string> where;   // scalar models: "vertices" or part names
+    Expression g;                      // scalar models: the lower bound u ≥ g(x, y, t)
+    std::vector<Rigid> rigid;         // elasticity: [obstacle] and the tables of [[obstacles]]
   } obstacle;
 
   struct Initial {
