@@ -288,7 +288,7 @@ SceneSpec read_scene(const Scene& s) {
   return spec;
 }
 
-std::string scene_key(const std::string& parameter, const SceneSpec& spec) {
+std::string scene_key(const std::string& parameter, const SceneSpec& spec, const std::string& message) {
   static const std::map<std::string, std::string> fixed = {
       {"n", "mesh.n"},           {"length", "mesh.length"},         {"rho", "physics.rho"},
       {"E", "physics.E"},        {"nu", "physics.nu"},              {"lambda", "physics.lambda"},
@@ -300,6 +300,9 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec) {
   if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
   if (parameter == "kappa") return spec.physics.model == "bar" ? "physics.E" : "physics.tension";
   if (parameter == "pair" || parameter == "mass") return spec.method.key;
+  if (parameter == "gap")  // "... (obstacle NAME)" names the obstacle
+    for (const SceneSpec::Rigid& r : spec.obstacle.rigid)
+      if (message.find("(obstacle " + r.name + ")") != std::string::npos) return r.key + ".gap";
   return "";
 }
 

@@ -116,7 +116,8 @@ SceneSpec read_scene(const Scene& scene);
 // The scene key that a kernel parameter name comes from ("dt" → "time.dt", "rho" →
 // "physics.rho", "pair" → method.pair or method.mass, ...), for the kernel's
 // InputError::parameter(); empty when the parameter is not a scene key.
-std::string scene_key(const std::string& parameter, const SceneSpec& spec);
+// (message: the kernel's, which names the obstacle an obstacle's parameter belongs to)
+std::string scene_key(const std::string& parameter, const SceneSpec& spec, const std::string& message = "");
 
 // Runs f; a kernel InputError naming a parameter is given the scene key instead
 // ("dt: must be positive" → "time.dt: must be positive").
@@ -125,7 +126,7 @@ auto with_scene_keys(const SceneSpec& spec, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const InputError& e) {
-    const std::string key = e.parameter().empty() ? "" : scene_key(e.parameter(), spec);
+    const std::string key = e.parameter().empty() ? "" : scene_key(e.parameter(), spec, e.message());
     if (key.empty()) throw;
     throw InputError(key + ": " + e.message());
   }

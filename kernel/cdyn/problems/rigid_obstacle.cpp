@@ -41,8 +41,8 @@ ObstacleNormal obstacle_normal(const RigidObstacle& o, const Point& x, double h)
   const Point G{d({1, 0, 0}), d({0, 1, 0}), d({0, 0, 1})};
   const double s = std::hypot(G.x, G.y, G.z);
   if (!(s > 0.0) || !std::isfinite(s))
-    throw InputError("gap", o.name + ": the gap function has no gradient at (" + std::to_string(x.x) + ", " +
-                                std::to_string(x.y) + "): its normal is undefined there");
+    throw InputError("gap", "the gap function has no gradient at (" + std::to_string(x.x) + ", " +
+                                std::to_string(x.y) + "), so no normal there (obstacle " + o.name + ")");
   return {{G.x / s, G.y / s, G.z / s}, s};
 }
 
