@@ -74,12 +74,10 @@ ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   d.lambda = s.physics.lame.lambda;
   d.mu = s.physics.lame.mu;
   d.rho = s.physics.rho;
-  const Field fx = s.physics.f[0].field, fy = s.physics.f[1].field;
-  const Point g = s.physics.gravity;
-  const double rho = d.rho;
-  // f + ρ g: the body force per unit volume (gravity given as an acceleration).
-  d.f = {[fx, g, rho](const Point& x, double t) { return fx(x, t) + rho * g.x; },
-         [fy, g, rho](const Point& x, double t) { return fy(x, t) + rho * g.y; }};
+  // f + ρ g: the body force per unit volume (gravity given as an acceleration; the
+  // kernel adds ρ g with the density of each cell).
+  d.f = {s.physics.f[0].field, s.physics.f[1].field};
+  d.gravity = {s.physics.gravity.x, s.physics.gravity.y};
   d.dirichlet_parts = parts(mesh, s.dirichlet.parts, "dirichlet.parts");
   d.dirichlet_components = s.dirichlet.components;
   d.dirichlet_value = {s.dirichlet.value[0].field, s.dirichlet.value[1].field};
@@ -142,6 +140,7 @@ void build_problem(Simulation& sim) {
   const double norm = std::hypot(d.obstacle_normal.x, d.obstacle_normal.y);  // > 0: checked by the builder
   sim.plane_normal = {d.obstacle_normal.x / norm, d.obstacle_normal.y / norm};
   sim.contact_parts = d.contact_parts;
+  sim.materials = cell_materials(*sim.mesh, d);
 }
 
 void add_probes(Simulation& sim) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/mesh/mesh.hpp"
 #include "cdyn/mesh/point_location.hpp"
 #include "cdyn/qp/step_solver.hpp"
@@ -48,6 +49,7 @@ struct Simulation {
   bool has_plane = false;
   Point plane_point, plane_normal;
   std::vector<int> contact_parts;
+  CellMaterials materials;  // elasticity: ρ, λ, μ of every cell (materials by region), for σ in the fields
 };
 
 // Builds and checks everything (bad input throws InputError naming the key).
