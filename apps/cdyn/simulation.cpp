@@ -64,9 +64,19 @@ ScalarWaveData scalar_wave(const Mesh& mesh, const SceneSpec& s) {
   return d;
 }
 
+// The index of region `name` of the mesh (a gmsh physical surface), for the key `key`.
+int region(const Mesh& mesh, const std::string& name, const std::string& key) {
+  const auto it = std::find(mesh.region_names.begin(), mesh.region_names.end(), name);
+  if (it != mesh.region_names.end()) return static_cast<int>(it - mesh.region_names.begin());
+  std::string known;
+  for (const std::string& r : mesh.region_names) known += (known.empty() ? "" : ", ") + r;
+  throw InputError(key + ": the mesh has no region '" + name + "' (" +
+                   (known.empty() ? "it has no regions: physical surfaces of a gmsh mesh" : "regions: " + known) + ")");
+}
+
 // Plane-strain elasticity with frictionless contact against a rigid plane
-// (problems/elastic_contact.hpp): the body force f + ρ·gravity, Dirichlet and Neumann parts,
-// Γ_C and the plane.
+// (problems/elastic_contact.hpp): the materials (one, or one per named region), the body
+// force f + ρ·gravity, Dirichlet and Neumann parts, Γ_C and the plane.
 ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   if (mesh.dim != 2) throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
   ElasticContactData d;
@@ -74,6 +84,8 @@ ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   d.lambda = s.physics.lame.lambda;
   d.mu = s.physics.lame.mu;
   d.rho = s.physics.rho;
+  for (const auto& m : s.physics.materials)
+    d.region_materials.push_back({region(mesh, m.name, "materials." + m.name), {m.rho, m.lame.lambda, m.lame.mu}});
   // f + ρ g: the body force per unit volume (gravity given as an acceleration; the
   // kernel adds ρ g with the density of each cell).
   d.f = {s.physics.f[0].field, s.physics.f[1].field};
@@ -165,7 +177,7 @@ Mesh make_mesh(const SceneSpec& s) {
   return with_scene_keys(s, [&] {
     if (s.mesh.kind == "interval") return interval_mesh(s.mesh.n, s.mesh.length);
     if (s.mesh.kind == "unit_square") return unit_square_mesh(s.mesh.n);
-    return read_mesh(s.mesh.file);
+    return read_mesh(s.mesh.file, s.mesh.set);
   });
 }
 
