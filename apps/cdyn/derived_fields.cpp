@@ -34,7 +34,7 @@ DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
 ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy) const {
   ExtraFields out;
   const Mesh& mesh = *sim_.mesh;
-  if (sim_.components == 2) {
+  if (sim_.components == 2 && sim_.spec.output.stress) {
     const std::vector<StressState> cells =
         cell_stress(*sim_.problem.W, U_full, sim_.materials.lambda, sim_.materials.mu);
     out.cell = stress_arrays(cells);
@@ -47,7 +47,7 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
         pressure.values[a.vertex] = contact_->pressure(reaction_xy, a);
     out.point.push_back(std::move(pressure));
   }
-  if (!mesh.cell_region.empty())
+  if (sim_.components == 2 && !mesh.cell_region.empty())
     out.cell.push_back({"region", 1, std::vector<double>(mesh.cell_region.begin(), mesh.cell_region.end())});
   return out;
 }

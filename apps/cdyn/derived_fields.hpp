@@ -3,11 +3,13 @@
 //   - elasticity: the strain ε, the stress σ (3 × 3, σ_zz = λ tr ε of plane strain) and
 //     the von Mises stress, per cell (cell means) and at the vertices (area-weighted
 //     averages of the cell values), from the kernel's post/stress.hpp with the λ, μ of
-//     every cell (materials by region);
+//     every cell (materials by region); output.stress = false leaves them out;
 //   - elasticity against a plane: the contact pressure p(a) = F_N(a) / w(a) at the
 //     constrained vertices of Γ_C (post/contact_pressure.hpp, contact.csv's `pressure`),
 //     0 at every other vertex;
-//   - a mesh with regions (gmsh physical surfaces): the region index of each cell.
+//   - elasticity on a mesh with regions (gmsh physical surfaces, where materials are
+//     given): the region index of each cell.
+// The scalar models get none of them: their files are those of cdyn::io alone.
 // The kernel computes, cdyn::io writes; this file only names and lays out the arrays.
 #pragma once
 

@@ -37,6 +37,7 @@ const std::set<std::string> kKnownKeys = {
     "solver.condense", "solver.cg_iterations",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
+    "output.stress",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 

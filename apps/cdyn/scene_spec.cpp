@@ -270,6 +270,7 @@ void read_output(const Scene& s, SceneSpec& spec) {
   if (o.contact_every < 1) throw InputError("output.contact_every: must be at least 1");
   o.fields = s.boolean("output.fields", true);
   o.plots = s.boolean("output.plots", true);
+  o.stress = s.boolean("output.stress", true);
   for (const std::string& name : s.keys("output.probes"))
     o.probes.emplace_back(name, s.numbers("output.probes." + name));
   spec.exact_solution = s.string("exact.solution", "");
@@ -291,6 +292,8 @@ SceneSpec read_scene(const Scene& s) {
     throw InputError("materials: materials by region are for physics.model = elasticity");
   if (p.model != "elasticity" && s.has("output.contact_every"))
     throw InputError("output.contact_every: only elasticity runs write contact.csv");
+  if (p.model != "elasticity" && s.has("output.stress"))
+    throw InputError("output.stress: only elasticity runs have a stress to write");
   read_mesh_keys(s, spec);
   read_physics(s, spec);
   if (p.model == "oscillator") {

@@ -98,6 +98,7 @@ struct SceneSpec {
   struct Output {
     int every = 1, contact_every = 1;
     bool fields = true, plots = true;
+    bool stress = true;        // elasticity: σ, ε, von Mises in the field files
     std::vector<std::pair<std::string, std::vector<double>>> probes;  // name, coordinates
   } output;
 

@@ -33,12 +33,9 @@ import shutil
 import subprocess
 import sys
 
-try:
-    import meshio
-    import numpy as np
-except ImportError:
-    print("check_fields: skipped (python3-meshio or numpy missing)")
-    sys.exit(77)
+from cli_helpers import import_meshio
+
+meshio, np = import_meshio("check_fields")
 
 cdyn, work, lshape = sys.argv[1], sys.argv[2], sys.argv[3]
 

@@ -23,24 +23,20 @@ term M/dt^2 (measured 3e-13 relative); asserted 1e-9:
     enters the mass and the weight alike;
   - one material given per region with the body's own values is the single-material
     run bit for bit (data/scenes/disk.toml and its region "disk");
-  - `cdyn study --vary mesh.set.h=2,1`: two runs, the dofs grow.
+  - `cdyn study --vary mesh.set.h=2,1`: two runs, the dofs grow;
+  - output.stress = false writes no stress arrays (and keeps the others).
 Exit status 77 (skipped) when meshio or numpy is missing.
 """
 import csv
 import glob
-import json
 import os
 import shutil
 import subprocess
 import sys
 
-try:
-    import meshio
-    import numpy as np
-except ImportError:
-    print("check_materials: skipped (python3-meshio or numpy missing)")
-    sys.exit(77)
+from cli_helpers import import_meshio, run as run_scene
 
+meshio, np = import_meshio("check_materials")
 cdyn, source, work = sys.argv[1], sys.argv[2], sys.argv[3]
 scene = os.path.join(source, "data", "scenes", "two_layer.toml")
 disk = os.path.join(source, "data", "scenes", "disk.toml")
@@ -64,15 +60,8 @@ U_TOP = -P * (10.0 / oedometric(SOFT) + 10.0 / oedometric(STIFF))
 
 
 def run(out, *sets, scene_file=scene):
-    args = [cdyn, "run", scene_file, "--quiet", "--out", out, "--set", "output.plots=false"]
-    for s in sets:
-        args += ["--set", s]
-    shutil.rmtree(out, ignore_errors=True)
-    subprocess.run(args, check=True)
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
-    with open(os.path.join(out, "history.csv")) as f:
-        rows = list(csv.DictReader(f))
+    """`cdyn run` with its field files (cli_helpers.run turns them off): (summary, history rows)."""
+    summary, rows, _ = run_scene(cdyn, scene_file, out, "output.fields=true", *sets)
     return summary, rows
 
 
@@ -127,6 +116,16 @@ n1, err_u, err_s = check_oedometer(os.path.join(work, "two_layer"), "h = 1")
 print(f"two_layer (h = 1, {n1} vertices): u_y(top) = {U_TOP:.8f} mm to {err_u:.1e}, sigma and von Mises per region to "
       f"{err_s:.1e}, contact pressure p at the base")
 
+# output.stress = false: no stress arrays, the rest as before.
+out = os.path.join(work, "two_layer_no_stress")
+run(out, "output.stress=false")
+m = last_frame(out)
+assert not {"sigma", "epsilon", "von_mises"} & (set(m.point_data) | set(m.cell_data)), (m.point_data.keys(), m.cell_data.keys())
+assert "contact_pressure" in m.point_data and "region" in m.cell_data
+size = lambda d: os.path.getsize(sorted(glob.glob(os.path.join(d, "fields", "step_*.vtu")))[-1])
+print(f"output.stress = false: no sigma, epsilon, von_mises; {size(out)} bytes a file instead of "
+      f"{size(os.path.join(work, 'two_layer'))}")
+
 # Refinement through the .geo's parameter: more vertices, the same answer.
 counts = {}
 for h in ("2", "0.5"):
@@ -142,9 +141,9 @@ summary, rows = run(os.path.join(work, "two_layer_flight"), "obstacle.enabled=fa
                     f"physics.gravity=[0, -{g}]", "time.scheme=midpoint", "time.dt=1e-5", "time.T=2e-4",
                     "output.fields=false")
 mass = 100.0 * SOFT["rho"] + 100.0 * STIFF["rho"]
-err_p = max(abs(float(r["py"]) + mass * g * float(r["t"])) for r in rows) / (mass * g * float(rows[-1]["t"]))
+err_p = max(abs(r["py"] + mass * g * r["t"]) for r in rows) / (mass * g * rows[-1]["t"])
 assert err_p <= 1e-10, err_p
-assert max(abs(float(r["px"])) for r in rows) <= 1e-10 * mass * g * float(rows[-1]["t"])  # nothing pushes along x
+assert max(abs(r["px"]) for r in rows) <= 1e-10 * mass * g * rows[-1]["t"]  # nothing pushes along x
 print(f"free flight: p_y = -(rho_soft |soft| + rho_stiff |stiff|) g t to {err_p:.1e}")
 
 # One material given per region, equal to the body's: the single-material run, bit for bit.
