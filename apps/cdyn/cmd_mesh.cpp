@@ -4,11 +4,14 @@
 // domain and h_max, then each physical group cdyn uses with its dimension, name and
 // number of cells or facets.  Everything is counted on the cdyn::Mesh itself (not on
 // the gmsh model), so the summary shows exactly what a scene using this file gets.
+// --set name=value gives a parameter of a .geo, as a scene's mesh.set.name does.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
 #include "cdyn/mesh/mesh.hpp"
 #include "commands.hpp"
@@ -25,8 +28,28 @@ struct GroupRow {
 
 }  // namespace
 
-int cmd_mesh(const std::string& file) {
-  const Mesh mesh = read_mesh(file);  // throws InputError on bad input
+int cmd_mesh(const std::string& file, const std::vector<std::string>& sets) {
+  GeoParameters parameters;
+  for (const std::string& a : sets) {
+    const auto eq = a.find('=');
+    double value = NAN;
+    std::size_t used = 0;
+    try {
+      if (eq != std::string::npos) value = std::stod(a.substr(eq + 1), &used);
+    } catch (const std::exception&) {
+    }
+    if (eq == std::string::npos || eq == 0 || used == 0 || used != a.size() - eq - 1)
+      throw InputError("--set " + a + ": expected name=number, e.g. --set h=0.5");
+    parameters.emplace_back(a.substr(0, eq), value);
+  }
+  const Mesh mesh = [&] {
+    try {
+      return read_mesh(file, parameters);  // throws InputError on bad input
+    } catch (const InputError& e) {        // a parameter's error names its --set
+      if (e.parameter().rfind("setnumber.", 0) != 0) throw;
+      throw InputError("--set " + e.parameter().substr(10) + ": " + e.message());
+    }
+  }();
 
   const bool two_d = mesh.dim == 2;
   // "1 triangle", "2 triangles"

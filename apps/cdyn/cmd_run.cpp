@@ -34,6 +34,7 @@
 #include "cdyn/post/linear_momentum.hpp"
 #include "commands.hpp"
 #include "contact_history.hpp"
+#include "derived_fields.hpp"
 #include "embedded_scripts.hpp"
 #include "exact_solution.hpp"
 #include "python_script.hpp"
@@ -259,11 +260,13 @@ int cmd_run(const RunOptions& opt) {
   // is measured apart and left out of wall_s, which is the cost of the method.
   std::optional<FieldsWriter> fields;
   if (write_fields) fields.emplace(out, *sim.mesh, p);
+  const DerivedFields derived(sim);  // σ, ε, von Mises, contact pressure, regions
   double fields_seconds = 0.0;
   auto write_fields_at = [&](int step) {
     if (!fields || (step % sim.output_every != 0 && step != sim.n_steps)) return;
     const auto tf = Clock::now();
-    fields->write(step, s.t, p.full(s.U), rate, force_xy);
+    const Eigen::VectorXd U_full = p.full(s.U);
+    fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy));
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
@@ -304,7 +307,8 @@ int cmd_run(const RunOptions& opt) {
   const bool partial = steps_done < sim.n_steps;
   if (partial && fields && steps_done % sim.output_every != 0) {  // the last state computed
     const auto tf = Clock::now();
-    fields->write(steps_done, s.t, p.full(s.U), rate, force_xy);
+    const Eigen::VectorXd U_full = p.full(s.U);
+    fields->write(steps_done, s.t, U_full, rate, force_xy, derived(U_full, force_xy));
     fields_seconds += seconds_since(tf);
   }
   const double wall = seconds_since(t0) - fields_seconds;

@@ -14,8 +14,9 @@ namespace cdyn::app {
 
 struct Simulation;
 
-// `cdyn mesh FILE.geo|FILE.msh`: counts, measure, h and the physical groups.
-int cmd_mesh(const std::string& file);
+// `cdyn mesh FILE.geo|FILE.msh [--set name=value]...`: counts, measure, h and the
+// physical groups; --set gives a .geo parameter (gmsh -setnumber, a scene's mesh.set).
+int cmd_mesh(const std::string& file, const std::vector<std::string>& sets = {});
 
 // `cdyn run [SCENE.toml] [--out DIR] [--set key=value]... [--quiet]`.
 struct RunOptions {

@@ -40,6 +40,9 @@ int main(int argc, char** argv) {
   std::string mesh_file;
   auto* mesh = app.add_subcommand("mesh", "Summarise a mesh (.geo or .msh) and its physical groups");
   mesh->add_option("FILE", mesh_file, "a gmsh .geo or .msh (2.2 or 4.1) file")->required();
+  std::vector<std::string> mesh_sets;
+  mesh->add_option("--set", mesh_sets, "a .geo parameter, e.g. --set h=0.5 (as gmsh -setnumber h 0.5)")
+      ->allow_extra_args(false);
 
   try {
     app.parse(argc, argv);
@@ -62,7 +65,7 @@ int main(int argc, char** argv) {
       wp_options.sets = cdyn::app::command_line_paths(wp_options.sets);
       return cdyn::app::cmd_wellposed(wp_options);
     }
-    if (*mesh) return cdyn::app::cmd_mesh(mesh_file);
+    if (*mesh) return cdyn::app::cmd_mesh(mesh_file, mesh_sets);
   } catch (const cdyn::InputError& e) {
     std::cerr << "cdyn: error: " << e.what() << "\n";
     return 2;

@@ -15,10 +15,13 @@ namespace cdyn::app {
 
 namespace {
 
-// Every key a scene may contain.  Tables under "output.probes" hold user names.
+// Every key a scene may contain.  Tables under "output.probes" hold user names; a "*"
+// stands for a name the user chooses (a gmsh parameter, a region), whose keys are
+// checked like the others (pattern_of).
 const std::set<std::string> kKnownKeys = {
     "name",           "description",
-    "mesh.kind",      "mesh.n",         "mesh.length",     "mesh.file",
+    "mesh.kind",      "mesh.n",         "mesh.length",     "mesh.file",       "mesh.set.*",
+    "materials.*.E",  "materials.*.nu", "materials.*.lambda", "materials.*.mu", "materials.*.rho",
     "physics.model",  "physics.E",      "physics.rho",     "physics.tension", "physics.f",
     "physics.m",      "physics.k",
     "physics.nu",     "physics.lambda", "physics.mu",      "physics.gravity",
@@ -35,14 +38,34 @@ const std::set<std::string> kKnownKeys = {
     "solver.condense", "solver.cg_iterations",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
+    "output.stress",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 // The keys of each table of the array [[obstacles]] (elasticity: more rigid obstacles).
 const std::set<std::string> kObstacleKeys = {"where", "point", "normal", "gap", "name"};
 
-bool is_known_table(const std::string& prefix) {
+// The key with its user-chosen name replaced by "*": mesh.set.h → mesh.set.*,
+// materials.steel.E → materials.*.E (and the table materials.steel → materials.*).
+std::string pattern_of(const std::string& key) {
+  // the user's name is the component after "materials", or after "mesh.set"
+  std::size_t begin = std::string::npos;
+  if (key.rfind("materials.", 0) == 0) begin = 10;
+  if (key.rfind("mesh.set.", 0) == 0) begin = 9;
+  if (begin == std::string::npos) return key;
+  const std::size_t end = key.find('.', begin);
+  std::string out(key, 0, begin);
+  out.push_back('*');
+  if (end != std::string::npos) out.append(key, end, std::string::npos);
+  return out;
+}
+
+bool is_known_key(const std::string& key) { return kKnownKeys.count(key) || kKnownKeys.count(pattern_of(key)); }
+
+bool is_known_table(const std::string& key) {
+  std::string prefix = pattern_of(key);
+  prefix += '.';
   return std::any_of(kKnownKeys.begin(), kKnownKeys.end(),
-                     [&](const std::string& k) { return k.rfind(prefix + ".", 0) == 0; });
+                     [&](const std::string& k) { return k.rfind(prefix, 0) == 0; });
 }
 
 std::string type_name(const toml::node& n) {
@@ -97,7 +120,7 @@ void Scene::validate(const toml::table& t, const std::string& prefix) const {
     }
     if (node.is_table() && is_known_table(key)) {
       validate(*node.as_table(), key);
-    } else if (!kKnownKeys.count(key)) {
+    } else if (!is_known_key(key)) {
       throw InputError(source_ + ": unknown key '" + key + "'");
     }
   }
@@ -107,7 +130,9 @@ void Scene::set(const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError("--set " + assignment + ": expected key=value");
   const std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
-  if (!kKnownKeys.count(key)) throw InputError("--set: unknown key '" + key + "'");
+  // A known key, or a known table given whole (--set "mesh.set={ h = 0.05 }").
+  const bool table = is_known_table(key) && !kFreeTables.count(key);
+  if (!is_known_key(key) && !table) throw InputError("--set: unknown key '" + key + "'");
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value);
@@ -122,6 +147,11 @@ void Scene::set(const std::string& assignment) {
     auto [it, inserted] = t->insert(part, toml::table{});
     if (!it->second.is_table()) throw InputError("--set " + key + ": '" + part + "' is not a table");
     t = it->second.as_table();
+  }
+  if (table) {
+    const toml::table* value = parsed.get("v")->as_table();
+    if (!value) throw InputError("--set " + key + ": expected a table, e.g. { name = value }");
+    validate(*value, key);
   }
   t->insert_or_assign(key.substr(start), *parsed.get("v"));
   if (key == "name") name_ = value;

@@ -2,6 +2,7 @@
 #include "scene_spec.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -97,8 +98,21 @@ void read_mesh_keys(const Scene& s, SceneSpec& spec) {
     const auto slash = spec.source.find_last_of('/');
     if (!m.file.empty() && m.file.front() != '/' && slash != std::string::npos)
       m.file = spec.source.substr(0, slash + 1) + m.file;
+    // mesh.set: numbers given to the .geo before gmsh meshes it (gmsh -setnumber).
+    const std::vector<std::string> names = s.keys("mesh.set");
+    const auto dot = m.file.find_last_of('.');
+    std::string extension = dot == std::string::npos ? "" : m.file.substr(dot);
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (!names.empty() && extension != ".geo")
+      throw InputError("mesh.set: gmsh parameters need a .geo mesh.file (" + m.file + " is already meshed)");
+    for (const std::string& name : names) {
+      const double value = s.number("mesh.set." + name);
+      if (!std::isfinite(value)) throw InputError("mesh.set." + name + ": must be a finite number");
+      m.set.emplace_back(name, value);
+    }
     return;
   }
+  if (s.has("mesh.set")) throw InputError("mesh.set: gmsh parameters need mesh.kind = \"gmsh\" and a .geo file");
   m.n = s.integer("mesh.n");
   if (m.kind == "interval") m.length = s.number("mesh.length", 1.0);
 }
@@ -148,6 +162,39 @@ Lame material(const Scene& s) {
   return {s.number("physics.lambda"), s.number("physics.mu")};  // checked by build_elastic_contact
 }
 
+// [materials.NAME]: the material of the mesh region NAME (a gmsh physical surface);
+// each gives E and nu, or lambda and mu, or neither (the region keeps physics' pair),
+// and rho or not (physics.rho).  Regions are matched with the mesh in simulation.cpp.
+void read_materials(const Scene& s, SceneSpec& spec) {
+  for (const std::string& name : s.keys("materials")) {
+    const std::string key = "materials." + name;
+    if (s.keys(key).empty()) throw InputError(key + ": empty (give E and nu, or lambda and mu, and/or rho)");
+    SceneSpec::Physics::Material m{name, s.number(key + ".rho", spec.physics.rho), spec.physics.lame};
+    if (!(m.rho > 0.0) || !std::isfinite(m.rho)) throw InputError(key + ".rho: must be positive");
+    const bool young = s.has(key + ".E") || s.has(key + ".nu");
+    const bool lame = s.has(key + ".lambda") || s.has(key + ".mu");
+    if (young && lame) throw InputError(key + ".lambda: give E and nu, or lambda and mu, not both");
+    if (young) {
+      if (!s.has(key + ".E")) throw InputError(key + ".E: missing (" + key + ".nu is given)");
+      if (!s.has(key + ".nu")) throw InputError(key + ".nu: missing (" + key + ".E is given)");
+      try {
+        m.lame = lame_parameters(s.number(key + ".E"), s.number(key + ".nu"));
+      } catch (const InputError& e) {
+        throw InputError(key + "." + e.parameter() + ": " + e.message());
+      }
+    } else if (lame) {
+      if (!s.has(key + ".lambda")) throw InputError(key + ".lambda: missing (" + key + ".mu is given)");
+      if (!s.has(key + ".mu")) throw InputError(key + ".mu: missing (" + key + ".lambda is given)");
+      m.lame = {s.number(key + ".lambda"), s.number(key + ".mu")};
+      if (!(m.lame.mu > 0.0) || !std::isfinite(m.lame.mu))
+        throw InputError(key + ".mu: the shear modulus must be positive");
+      if (!(m.lame.lambda + m.lame.mu > 0.0) || !std::isfinite(m.lame.lambda))
+        throw InputError(key + ".lambda: plane strain needs λ + μ > 0");
+    }
+    spec.physics.materials.push_back(m);
+  }
+}
+
 void read_physics(const Scene& s, SceneSpec& spec) {
   SceneSpec::Physics& p = spec.physics;
   p.rho = s.number("physics.rho", 1.0);
@@ -163,6 +210,7 @@ void read_physics(const Scene& s, SceneSpec& spec) {
     p.lame = material(s);
     p.f = expressions(s, "physics.f", 2);
     p.gravity = point(s, "physics.gravity", {0.0, 0.0});
+    read_materials(s, spec);
     return;
   }
   p.stiffness = p.model == "bar" ? s.number("physics.E", 1.0) : s.number("physics.tension", 1.0);
@@ -255,6 +303,7 @@ void read_output(const Scene& s, SceneSpec& spec) {
   if (o.contact_every < 1) throw InputError("output.contact_every: must be at least 1");
   o.fields = s.boolean("output.fields", true);
   o.plots = s.boolean("output.plots", true);
+  o.stress = s.boolean("output.stress", true);
   for (const std::string& name : s.keys("output.probes"))
     o.probes.emplace_back(name, s.numbers("output.probes." + name));
   spec.exact_solution = s.string("exact.solution", "");
@@ -272,8 +321,12 @@ SceneSpec read_scene(const Scene& s) {
     throw InputError("physics.model: unknown model '" + p.model + "' (oscillator, bar, membrane, elasticity)");
   reject_keys(s, p.model == "elasticity" ? kScalarOnly : kElasticityOnly, p.model);
   if (p.model == "oscillator") reject_keys(s, kNotOscillator, p.model);
+  if (p.model != "elasticity" && !s.keys("materials").empty())
+    throw InputError("materials: materials by region are for physics.model = elasticity");
   if (p.model != "elasticity" && s.has("output.contact_every"))
     throw InputError("output.contact_every: only elasticity runs write contact.csv");
+  if (p.model != "elasticity" && s.has("output.stress"))
+    throw InputError("output.stress: only elasticity runs have a stress to write");
   read_mesh_keys(s, spec);
   read_physics(s, spec);
   if (p.model == "oscillator") {
@@ -298,6 +351,8 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec, const
       {"scheme", "time.scheme"}, {"tol", "solver.tol"},             {"max_iterations", "solver.max_iterations"},
       {"solver", "solver.name"}, {"mesh", "mesh.kind"}};
   if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
+  // gmsh parameters of the .geo (meshing/cdyn/gmsh_mesh.hpp)
+  if (parameter.rfind("setnumber.", 0) == 0) return "mesh.set." + parameter.substr(10);
   if (parameter == "kappa") return spec.physics.model == "bar" ? "physics.E" : "physics.tension";
   if (parameter == "pair" || parameter == "mass") return spec.method.key;
   if (parameter == "gap")  // "... (obstacle NAME)" names the obstacle

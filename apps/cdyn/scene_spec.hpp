@@ -37,6 +37,7 @@ struct SceneSpec {
     int n = 0;                 // cells per side (interval, unit_square)
     double length = 1.0;       // interval
     std::string file;          // gmsh: .geo or .msh, resolved against the scene's directory
+    std::vector<std::pair<std::string, double>> set;  // mesh.set: gmsh parameters of a .geo (-setnumber)
   } mesh;
 
   struct Physics {
@@ -47,6 +48,12 @@ struct SceneSpec {
     double m = 1.0, k = 1.0;     // oscillator
     std::vector<Expression> f;   // the load: one expression (scalar models) or two
     Point gravity;               // elasticity: an acceleration, added as ρ g
+    struct Material {            // elasticity: [materials.NAME], NAME a region of the mesh
+      std::string name;
+      double rho = 1.0;
+      Lame lame;
+    };
+    std::vector<Material> materials;
   } physics;
 
   struct Method {
@@ -102,6 +109,7 @@ struct SceneSpec {
   struct Output {
     int every = 1, contact_every = 1;
     bool fields = true, plots = true;
+    bool stress = true;        // elasticity: σ, ε, von Mises in the field files
     std::vector<std::pair<std::string, std::vector<double>>> probes;  // name, coordinates
   } output;
 

@@ -96,9 +96,19 @@ RigidObstacle rigid(const Mesh& mesh, const SceneSpec::Rigid& r) {
   return o;
 }
 
+// The index of region `name` of the mesh (a gmsh physical surface), for the key `key`.
+int region(const Mesh& mesh, const std::string& name, const std::string& key) {
+  const auto it = std::find(mesh.region_names.begin(), mesh.region_names.end(), name);
+  if (it != mesh.region_names.end()) return static_cast<int>(it - mesh.region_names.begin());
+  std::string known;
+  for (const std::string& r : mesh.region_names) known += (known.empty() ? "" : ", ") + r;
+  throw InputError(key + ": the mesh has no region '" + name + "' (" +
+                   (known.empty() ? "it has no regions: physical surfaces of a gmsh mesh" : "regions: " + known) + ")");
+}
+
 // Plane-strain elasticity with frictionless contact against a rigid plane
-// (problems/elastic_contact.hpp): the body force f + ρ·gravity, Dirichlet and Neumann parts,
-// Γ_C and the plane.
+// (problems/elastic_contact.hpp): the materials (one, or one per named region), the body
+// force f + ρ·gravity, Dirichlet and Neumann parts, Γ_C and the plane.
 ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   if (mesh.dim != 2) throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
   ElasticContactData d;
@@ -106,12 +116,12 @@ ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   d.lambda = s.physics.lame.lambda;
   d.mu = s.physics.lame.mu;
   d.rho = s.physics.rho;
-  const Field fx = s.physics.f[0].field, fy = s.physics.f[1].field;
-  const Point g = s.physics.gravity;
-  const double rho = d.rho;
-  // f + ρ g: the body force per unit volume (gravity given as an acceleration).
-  d.f = {[fx, g, rho](const Point& x, double t) { return fx(x, t) + rho * g.x; },
-         [fy, g, rho](const Point& x, double t) { return fy(x, t) + rho * g.y; }};
+  for (const auto& m : s.physics.materials)
+    d.region_materials.push_back({region(mesh, m.name, "materials." + m.name), {m.rho, m.lame.lambda, m.lame.mu}});
+  // f + ρ g: the body force per unit volume (gravity given as an acceleration; the
+  // kernel adds ρ g with the density of each cell).
+  d.f = {s.physics.f[0].field, s.physics.f[1].field};
+  d.gravity = {s.physics.gravity.x, s.physics.gravity.y};
   d.dirichlet_parts = parts(mesh, s.dirichlet.parts, "dirichlet.parts");
   d.dirichlet_components = s.dirichlet.components;
   d.dirichlet_value = {s.dirichlet.value[0].field, s.dirichlet.value[1].field};
@@ -168,6 +178,7 @@ void build_problem(Simulation& sim) {
   sim.dirichlet_components = d.dirichlet_components;
   sim.components = 2;
   sim.has_obstacle = d.obstacle;
+  sim.materials = cell_materials(*sim.mesh, d);
 }
 
 void add_probes(Simulation& sim) {
@@ -192,7 +203,7 @@ Mesh make_mesh(const SceneSpec& s) {
   return with_scene_keys(s, [&] {
     if (s.mesh.kind == "interval") return interval_mesh(s.mesh.n, s.mesh.length);
     if (s.mesh.kind == "unit_square") return unit_square_mesh(s.mesh.n);
-    return read_mesh(s.mesh.file);
+    return read_mesh(s.mesh.file, s.mesh.set);
   });
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/mesh/mesh.hpp"
 #include "cdyn/mesh/point_location.hpp"
 #include "cdyn/qp/step_solver.hpp"
@@ -45,6 +46,7 @@ struct Simulation {
   // The scalar models keep components = 1 and no rigid obstacle.
   int components = 1;
   bool has_obstacle = false;
+  CellMaterials materials;  // elasticity: ρ, λ, μ of every cell (materials by region), for σ in the fields
 };
 
 // Builds and checks everything (bad input throws InputError naming the key).

@@ -83,7 +83,7 @@ FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, c
 }
 
 void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
-                         const Eigen::VectorXd& reaction_xy) {
+                         const Eigen::VectorXd& reaction_xy, const ExtraFields& extra) {
   const FESpace& W = *problem_.W;
   const int nv = mesh_.n_vertices(), n_comp = W.components();
   const int width = n_comp == 1 ? 1 : 3;  // ParaView's vectors have 3 components
@@ -102,13 +102,38 @@ void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, cons
     for (int k = 0; k < n_comp; ++k) lambda[width * vertex + k] = c[k];
   }
 
+  // The arrays in the order of their blocks: u, v, lambda, the extra point arrays, the
+  // extra cell arrays; then the geometry.
+  struct Entry {
+    const std::string* name;
+    int components;
+    const std::vector<double>* values;
+    std::uint64_t offset;
+  };
+  const std::string base_names[] = {"u", "v", "lambda"};
+  std::vector<Entry> point_entries{{&base_names[0], width, &u, 0}, {&base_names[1], width, &v, 0},
+                                   {&base_names[2], width, &lambda, 0}},
+      cell_entries;
+  auto add = [](std::vector<Entry>& to, const std::vector<FieldArray>& arrays, std::size_t tuples, const char* where) {
+    for (const FieldArray& a : arrays) {
+      if (a.components < 1 || a.values.size() != tuples * static_cast<std::size_t>(a.components))
+        throw InputError("FieldsWriter: the " + std::string(where) + " array '" + a.name + "' has " +
+                         std::to_string(a.values.size()) + " values, expected " + std::to_string(tuples) + " × " +
+                         std::to_string(a.components));
+      to.push_back({&a.name, a.components, &a.values, 0});
+    }
+  };
+  add(point_entries, extra.point, static_cast<std::size_t>(nv), "point");
+  add(cell_entries, extra.cell, static_cast<std::size_t>(mesh_.n_cells()), "cell");
   std::string blocks;
-  blocks.reserve(3 * block_size(u.size(), 8) + geometry_blocks_.size());
-  append_block(blocks, u);
-  append_block(blocks, v);
-  append_block(blocks, lambda);
-  const std::uint64_t field = block_size(u.size(), 8);
-  const std::uint64_t at_points = 3 * field;
+  std::uint64_t offset = 0;
+  for (std::vector<Entry>* list : {&point_entries, &cell_entries})
+    for (Entry& e : *list) {
+      e.offset = offset;
+      append_block(blocks, *e.values);
+      offset += block_size(e.values->size(), 8);
+    }
+  const std::uint64_t at_points = offset;
   const std::uint64_t at_connectivity = at_points + block_size(3 * static_cast<std::size_t>(nv), 8);
   const std::uint64_t at_offsets = at_connectivity + block_size(static_cast<std::size_t>(mesh_.n_cells()) * mesh_.vertices_per_cell(), 8);
   const std::uint64_t at_types = at_offsets + block_size(mesh_.n_cells(), 8);
@@ -120,11 +145,19 @@ void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, cons
       << "  <UnstructuredGrid>\n"
       << "    <Piece NumberOfPoints=\"" << nv << "\" NumberOfCells=\"" << mesh_.n_cells() << "\">\n"
       << "      <PointData Scalars=\"u\">\n";
-  const char* names[] = {"u", "v", "lambda"};
-  for (int f = 0; f < 3; ++f)
-    xml << "        <DataArray type=\"Float64\" Name=\"" << names[f] << "\" NumberOfComponents=\"" << width
-        << "\" format=\"appended\" offset=\"" << f * field << "\"/>\n";
-  xml << "      </PointData>\n"
+  auto data_arrays = [&xml](const std::vector<Entry>& list) {
+    for (const Entry& e : list)
+      xml << "        <DataArray type=\"Float64\" Name=\"" << *e.name << "\" NumberOfComponents=\"" << e.components
+          << "\" format=\"appended\" offset=\"" << e.offset << "\"/>\n";
+  };
+  data_arrays(point_entries);
+  xml << "      </PointData>\n";
+  if (!cell_entries.empty()) {
+    xml << "      <CellData>\n";
+    data_arrays(cell_entries);
+    xml << "      </CellData>\n";
+  }
+  xml
       << "      <Points>\n"
       << "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\""
       << at_points << "\"/>\n"

@@ -9,7 +9,10 @@
 //           the step's QP, G = −I; post/contact_force.hpp's vertex_multiplier), 0
 //           elsewhere.
 // Vector-valued spaces give 3-component u, v, lambda (the missing ones 0; lambda
-// = λ_N n for contact against a rigid plane of normal n).
+// = λ_N n for contact against a rigid plane of normal n).  A caller may add named
+// arrays of its own, at the vertices (point data) or per cell (cell data): the
+// command line adds the stress and strain of elasticity runs (post/stress.hpp) and the
+// contact pressure.  This file writes them; it computes nothing.
 // Only vertex values are written: a P1+ bubble vanishes at the vertices and a P2
 // edge dof is not a vertex value, so the files show the P1 interpolant of the field
 // (docs/outputs.md).  fields.pvd lists the files with their times, so ParaView
@@ -25,10 +28,23 @@
 #include <string>
 #include <vector>
 
+
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/mesh/mesh.hpp"
 
 namespace cdyn {
+
+// A named array written next to u, v and lambda: `components` values per vertex
+// (point data) or per cell (cell data), tuple after tuple.  9 components are read by
+// ParaView as a 3 × 3 tensor (row by row).
+struct FieldArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+struct ExtraFields {
+  std::vector<FieldArray> point, cell;
+};
 
 // Removes the fields of an earlier run in `out` (fields.pvd, fields/step_*.vtu), so
 // that a directory never mixes two runs' files.
@@ -42,8 +58,9 @@ class FieldsWriter {
   // Writes fields/step_NNNNNN.vtu for the state at `step`: U_full and rate_full are
   // coefficient vectors on all dofs of W^h, reaction_xy the step's reaction on its free
   // dofs in (x, y) components (post/contact_force.hpp's reaction_xy; empty: none yet).
+  // `extra`: more arrays (InputError if one has not n_vertices (n_cells) tuples).
   void write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
-             const Eigen::VectorXd& reaction_xy);
+             const Eigen::VectorXd& reaction_xy, const ExtraFields& extra = {});
 
   // Writes fields.pvd, the time series of the files written so far.
   void finish() const;

@@ -14,6 +14,7 @@
 #include "cdyn/mesh/point_location.hpp"
 // fe/
 #include "cdyn/fe/assembly.hpp"
+#include "cdyn/fe/cell_coefficient.hpp"
 #include "cdyn/fe/dirichlet.hpp"
 #include "cdyn/fe/element.hpp"
 #include "cdyn/fe/fe_space.hpp"
@@ -78,4 +79,5 @@
 #include "cdyn/post/contact_pressure.hpp"
 #include "cdyn/post/impact_summary.hpp"
 #include "cdyn/post/linear_momentum.hpp"
+#include "cdyn/post/stress.hpp"
 #include "cdyn/version.hpp"

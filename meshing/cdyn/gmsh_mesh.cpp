@@ -14,6 +14,15 @@
 //  - The ONELAB database outlives finalize(): a DefineConstant[h = ...] read from one
 //    .geo would silently give its value to the same parameter name in the next .geo
 //    opened by the process.  Each session therefore starts by clearing it.
+//  - `-setnumber h 0.05` passed to gmsh::initialize does reach DefineConstant, but it
+//    is kept in a process-wide table that finalize() does not clear: every later .geo
+//    of the process would get h = 0.05.  And 4.8 has no gmsh::parser::setNumber.  So
+//    parameters are defined by a .geo of definitions that gmsh::open reads first (open
+//    starts a fresh model and a fresh table of variables, which also makes every
+//    session independent of the previous ones) before the file is merged into it.  A
+//    plain assignment h = 0.1; in the file overrides such a definition (gmsh -setnumber
+//    behaves the same): the value each parameter has after the file is read back
+//    through ONELAB (SetNumber) and compared.
 #include "cdyn/gmsh_mesh.hpp"
 
 #include <gmsh.h>
@@ -24,10 +33,12 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -151,9 +162,81 @@ void refuse_if_reader_crashes(const std::string& path) {
                    ")");
 }
 
+// The text of a .geo and of the files it Includes (recursively, relative to the
+// including file's directory as gmsh resolves them; unreadable ones are skipped: gmsh
+// reports them when it parses).
+std::string geo_text_with_includes(const fs::path& file, std::set<fs::path>& seen) {
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(file, ec);
+  if (!seen.insert(ec ? file : canonical).second) return "";
+  std::ifstream in(file);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string text = buffer.str();
+  static const std::regex include(R"re(Include\s*"([^"]+)")re");
+  std::string all = text;
+  for (std::sregex_iterator it(text.begin(), text.end(), include), end; it != end; ++it) {
+    const fs::path inc = (*it)[1].str();
+    all += "\n" + geo_text_with_includes(inc.is_absolute() ? inc : file.parent_path() / inc, seen);
+  }
+  return all;
+}
+
+bool mentions_word(const std::string& text, const std::string& word) {
+  auto is_ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
+    if ((at == 0 || !is_ident(text[at - 1])) && (at + word.size() == text.size() || !is_ident(text[at + word.size()])))
+      return true;
+  return false;
+}
+
+// A private temporary directory, removed with everything in it on destruction.
+class TemporaryDirectory {
+ public:
+  TemporaryDirectory() {
+    std::string pattern = (fs::temp_directory_path() / "cdyn-geo-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw InputError("cannot create a temporary directory for the .geo parameters");
+    path_ = pattern;
+  }
+  ~TemporaryDirectory() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TemporaryDirectory(const TemporaryDirectory&) = delete;
+  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string exact_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// The checks on parameters that need no gmsh (see gmsh_mesh.hpp).
+void check_parameters(const std::string& path, const GeoParameters& parameters) {
+  static const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
+  std::set<fs::path> seen;
+  const std::string text = geo_text_with_includes(path, seen);
+  std::set<std::string> names;
+  for (const auto& [name, value] : parameters) {
+    const std::string key = "setnumber." + name;
+    if (!std::regex_match(name, identifier))
+      throw InputError(key, path + ": '" + name + "' is not a .geo variable name");
+    if (!names.insert(name).second) throw InputError(key, path + ": given twice");
+    if (!std::isfinite(value)) throw InputError(key, path + ": the value must be a finite number");
+    if (!mentions_word(text, name))
+      throw InputError(key, path + ": the .geo (and the files it includes) never mentions '" + name +
+                                "', so the value would change nothing");
+  }
+}
+
 // Opens `path` in the session and, for a .geo, meshes it in its own dimension.
 // Returns that dimension (1 or 2; anything else is refused).
-int load(GmshSession& session, const std::string& path) {
+int load(GmshSession& session, const std::string& path, const GeoParameters& parameters) {
   if (!is_geo(path) && !is_msh(path))
     throw InputError(path + ": unknown mesh file type '" + fs::path(path).extension().string() +
                      "' (expected .geo or .msh)");
@@ -163,8 +246,42 @@ int load(GmshSession& session, const std::string& path) {
   if (!std::ifstream(path)) throw InputError(path + ": cannot be opened for reading");
 
   const bool geo = is_geo(path);
+  if (!geo && !parameters.empty())
+    throw InputError("setnumber." + parameters.front().first,
+                     path + ": parameters need a .geo file (a .msh is already meshed)");
   if (!geo) refuse_if_reader_crashes(path);
-  session.call(path, geo ? "invalid .geo file" : "invalid .msh file", [&] { gmsh::open(path); });
+  if (parameters.empty()) {
+    session.call(path, geo ? "invalid .geo file" : "invalid .msh file", [&] { gmsh::open(path); });
+  } else {
+    check_parameters(path, parameters);
+    // definitions.geo (name = value; ...), then the file, then readback.geo, which puts
+    // the value each name has after the file into ONELAB for the comparison below.
+    const TemporaryDirectory tmp;
+    const fs::path definitions = tmp.path() / "definitions.geo", readback = tmp.path() / "readback.geo";
+    {
+      std::ofstream d(definitions), r(readback);
+      for (const auto& [name, value] : parameters) {
+        d << name << " = " << exact_number(value) << ";\n";
+        r << "SetNumber(\"cdyn/setnumber/" << name << "\", " << name << ");\n";
+      }
+      if (!d || !r) throw InputError(path + ": cannot write the .geo parameters to " + tmp.path().string());
+    }
+    session.call(path, "invalid .geo file", [&] {
+      gmsh::open(definitions.string());
+      gmsh::merge(path);
+    });
+    session.call(path, "reading the parameters back", [&] { gmsh::merge(readback.string()); });
+    for (const auto& [name, value] : parameters) {
+      std::vector<double> now;
+      gmsh::onelab::getNumber("cdyn/setnumber/" + name, now);
+      if (now.size() != 1 || now[0] != value)
+        throw InputError("setnumber." + name,
+                         path + ": the .geo assigns '" + name + "' itself (" + name + " = " +
+                             (now.empty() ? std::string("?") : exact_number(now[0])) +
+                             " after reading it), so the value given is ignored; declare it with DefineConstant[" +
+                             name + " = ...]");
+    }
+  }
 
   const int dim = gmsh::model::getDimension();
   if (dim < 1)
@@ -339,20 +456,21 @@ std::string format_number(double v) {
 
 }  // namespace
 
-Mesh read_mesh(const std::string& path) {
+Mesh read_mesh(const std::string& path, const GeoParameters& parameters) {
   GmshSession session;
-  const int dim = load(session, path);
+  const int dim = load(session, path, parameters);
   return extract(path, dim);
 }
 
-void write_msh(const std::string& geo_or_msh, const std::string& out_path, double version) {
+void write_msh(const std::string& geo_or_msh, const std::string& out_path, double version,
+               const GeoParameters& parameters) {
   if (version != 2.2 && version != 4.1)
     throw InputError(out_path + ": msh version " + format_number(version) +
                      " is not supported (use 2.2 or 4.1)");
   if (!is_msh(out_path)) throw InputError(out_path + ": the output file name must end in .msh");
 
   GmshSession session;
-  const int dim = load(session, geo_or_msh);
+  const int dim = load(session, geo_or_msh, parameters);
   extract(geo_or_msh, dim);  // refuse now what read_mesh would refuse when reading it back
 
   // gmsh saves only the elements of physical groups when the model has any, so a

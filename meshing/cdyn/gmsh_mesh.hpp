@@ -10,6 +10,18 @@
 // Only first-order simplices are accepted: 3-node triangles (2D, in the plane z = 0)
 // and 2-node lines (1D, along the x axis).  docs/meshing.md has the details.
 //
+// Parameters.  A .geo is usually written with its mesh size (and other numbers) as
+// parameters, DefineConstant[h = {0.1, Name "..."}], which `gmsh -setnumber h 0.05`
+// overrides from outside.  read_mesh takes such values, so that a refinement study needs
+// no hand-written .msh: each (name, value) is defined before the .geo is parsed, and
+// DefineConstant keeps a value already defined.  (gmsh 4.8's API has no parser::
+// setNumber, and its -setnumber argument to gmsh::initialize outlives the session, so
+// the values go through a small .geo of definitions read just before the file.)  Refused
+// (InputError whose parameter() is "setnumber.<name>"): parameters with a .msh, a name
+// that is not an identifier or that the .geo (and the files it Includes) never
+// mentions, a value that is not finite, and a name the .geo assigns itself (h = 0.1;
+// after the definitions, which would silently ignore the value given).
+//
 // Every failure (missing file, syntax error, meshing error, unsupported element,
 // empty mesh) is thrown as cdyn::InputError with a one-line message that starts with
 // the file name.  gmsh keeps global state, so these functions must not be called
@@ -17,16 +29,22 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cdyn/mesh/mesh.hpp"
 
 namespace cdyn {
 
+// (name, value) pairs given to a .geo as `gmsh -setnumber name value` would.
+using GeoParameters = std::vector<std::pair<std::string, double>>;
+
 // Reads `path` (.geo: meshed in its own dimension; .msh: read as is) into a Mesh:
 // vertices numbered 0..nv-1 in increasing gmsh node tag order (only nodes used by a
 // cell), triangles counter-clockwise, boundary facets tagged with their physical
 // group (untagged boundary facets get part -1), checked with Mesh::check.
-Mesh read_mesh(const std::string& path);
+// `parameters` (.geo only): see above.
+Mesh read_mesh(const std::string& path, const GeoParameters& parameters = {});
 
 // Meshes a .geo (or opens a .msh) and writes the mesh to `out_path` (must end in
 // .msh) in msh format `version`, 2.2 (what FreeFEM's gmshload reads) or 4.1.  The
@@ -34,6 +52,7 @@ Mesh read_mesh(const std::string& path);
 // can be read back.  gmsh writes only the elements of physical groups, so a model that
 // has physical groups but none of its own dimension gets one, named "domain", holding
 // all its cells (read back, it is a region).
-void write_msh(const std::string& geo_or_msh, const std::string& out_path, double version);
+void write_msh(const std::string& geo_or_msh, const std::string& out_path, double version,
+               const GeoParameters& parameters = {});
 
 }  // namespace cdyn

@@ -15,7 +15,14 @@ Three short runs, each file read with python3-meshio:
   - data/scenes/ramp.toml (a plane inclined by 30°, whose contact unknowns are rotated
     normal/tangential components): at the vertices in contact the lambda vector is the
     seed's λ_N n, parallel to the plane's normal n (|λ × n| ≤ 1e-12 |λ|: round-off of the
-    rotation) with λ·n < 0; written in the rotated components it would point along x.
+    rotation) with λ·n < 0; written in the rotated components it would point along x;
+  - the same ramp run's elasticity arrays (docs/outputs.md): point and cell data
+    "sigma", "epsilon" (3 x 3 tensors, 9 components, symmetric, ε_zz = 0), "von_mises";
+    in every cell σ = λ tr ε I + 2μ ε with the scene's λ = 300, μ = 150 (σ_zz = λ tr ε,
+    plane strain) and von_mises that of σ; the point values are the area-weighted
+    averages of the cell values around each vertex (recomputed here); the point data
+    "contact_pressure" is contact.csv's pressure at the constrained vertices of the same
+    step and 0 elsewhere; the cell data "region" is 0 (the physical surface "disk").
 Exit status 77 (skipped) when meshio or numpy is missing.
 """
 import csv
@@ -26,12 +33,9 @@ import shutil
 import subprocess
 import sys
 
-try:
-    import meshio
-    import numpy as np
-except ImportError:
-    print("check_fields: skipped (python3-meshio or numpy missing)")
-    sys.exit(77)
+from cli_helpers import import_meshio
+
+meshio, np = import_meshio("check_fields")
 
 cdyn, work, lshape = sys.argv[1], sys.argv[2], sys.argv[3]
 
@@ -116,4 +120,40 @@ cross = np.abs(lam[active, 0] * normal[1] - lam[active, 1] * normal[0]) / np.lin
 assert cross.max() <= 1e-12, cross.max()
 assert np.all(lam[active] @ normal < 0), lam[active] @ normal
 print(f"ramp: {active.sum()} vertices in contact at step 100, max |λ × n|/|λ| = {cross.max():.1e}, λ·n < 0")
+
+# Stress, strain and contact pressure of the same frame.
+m = frames[100]
+n_points, tri = len(m.points), one_cell_block(m, "triangle")
+lam_, mu_ = 300.0, 150.0
+cell = {k: m.cell_data[k][0] for k in ("sigma", "epsilon", "von_mises", "region")}
+assert cell["sigma"].shape == (len(tri), 9) and cell["epsilon"].shape == (len(tri), 9), cell["sigma"].shape
+assert m.point_data["sigma"].shape == (n_points, 9) and m.point_data["von_mises"].size == n_points
+assert np.all(cell["region"] == 0)
+sig, eps = cell["sigma"].reshape(-1, 3, 3), cell["epsilon"].reshape(-1, 3, 3)
+assert np.all(sig == np.transpose(sig, (0, 2, 1))) and np.all(eps[:, 2, :] == 0) and np.all(eps[:, :, 2] == 0)
+tr = eps[:, 0, 0] + eps[:, 1, 1]
+law = lam_ * tr[:, None, None] * np.eye(3) + 2 * mu_ * eps
+scale = np.abs(sig).max()
+assert scale > 0 and np.abs(sig - law).max() <= 1e-12 * scale, np.abs(sig - law).max() / scale
+dev = sig - np.trace(sig, axis1=1, axis2=2)[:, None, None] / 3 * np.eye(3)
+vm = np.sqrt(1.5 * (dev * dev).sum(axis=(1, 2)))
+assert np.abs(cell["von_mises"].ravel() - vm).max() <= 1e-12 * scale
+# vertex values: the area-weighted averages of the cell values
+p = m.points
+area = 0.5 * np.abs((p[tri[:, 1], 0] - p[tri[:, 0], 0]) * (p[tri[:, 2], 1] - p[tri[:, 0], 1]) -
+                    (p[tri[:, 2], 0] - p[tri[:, 0], 0]) * (p[tri[:, 1], 1] - p[tri[:, 0], 1]))
+num, den = np.zeros((n_points, 9)), np.zeros(n_points)
+for k in range(3):
+    np.add.at(num, tri[:, k], area[:, None] * cell["sigma"])
+    np.add.at(den, tri[:, k], area)
+assert np.abs(m.point_data["sigma"] - num / den[:, None]).max() <= 1e-12 * scale
+# contact pressure: contact.csv's at step 100, 0 elsewhere
+pressure = m.point_data["contact_pressure"].ravel()
+with open(os.path.join(work, "fields_ramp", "contact.csv")) as f:
+    contact = {int(r["vertex"]): float(r["pressure"]) for r in csv.DictReader(f) if int(r["step"]) == 100}
+others = np.setdiff1d(np.arange(n_points), list(contact))
+assert np.all(pressure[others] == 0.0) and max(contact.values()) > 0
+assert max(abs(pressure[v] - q) for v, q in contact.items()) <= 1e-12 * max(contact.values())
+print(f"ramp: sigma = lambda tr(eps) I + 2 mu eps in {len(tri)} cells to {np.abs(sig - law).max() / scale:.1e}, "
+      f"von Mises, vertex averages; contact_pressure at {len(contact)} vertices as contact.csv")
 print("check_fields: ok")

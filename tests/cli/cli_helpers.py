@@ -1,13 +1,15 @@
 """cli_helpers.py — what the command-line checks share: running a scene with overrides
 and reading its summary.json, history.csv and contact.csv, the area of a mesh, the
-ok/FAIL report (check_elasticity.py, check_ramp.py), and whether cdyn will find
-matplotlib for its plots (check_run.py, check_study.py)."""
+ok/FAIL report (check_elasticity.py, check_ramp.py), whether cdyn will find
+matplotlib for its plots (check_run.py, check_study.py), and meshio for the checks that
+read the field files (check_fields.py, check_materials.py)."""
 import csv
 import json
 import os
 import re
 import shutil
 import subprocess
+import sys
 
 QUIET = ["--quiet", "--set", "output.fields=false", "--set", "output.plots=false"]
 failures = []
@@ -40,6 +42,17 @@ def area(cdyn, mesh):
     """|Ω_h| of a .geo or .msh, from `cdyn mesh`."""
     text = subprocess.run([cdyn, "mesh", mesh], check=True, stdout=subprocess.PIPE, text=True).stdout
     return float(re.search(r"area\s+([0-9.eE+-]+)", text).group(1))
+
+
+def import_meshio(check_name):
+    """(meshio, numpy), or exit status 77 (the test is skipped) when either is missing."""
+    try:
+        import meshio
+        import numpy
+    except ImportError:
+        print(f"{check_name}: skipped (python3-meshio or numpy missing)")
+        sys.exit(77)
+    return meshio, numpy
 
 
 def have_matplotlib():

@@ -56,7 +56,10 @@ SparseMatrix from_triplets(int rows, int cols, const std::vector<Eigen::Triplet<
 
 }  // namespace
 
-SparseMatrix assemble_mass(const FESpace& R, const FESpace& W) {
+namespace {
+
+// The mass of (R, W), each cell's local matrix scaled by weight(c) (nullptr: 1).
+SparseMatrix weighted_mass(const FESpace& R, const FESpace& W, const CellCoefficient* weight) {
   if (&R.mesh() != &W.mesh()) throw InputError("assemble_mass: the two spaces must share one mesh");
   if (R.components() != W.components()) throw InputError("assemble_mass: the spaces differ in components");
   const QuadratureRule q = cell_quadrature(W.dim(), R.degree() + W.degree());
@@ -71,12 +74,33 @@ SparseMatrix assemble_mass(const FESpace& R, const FESpace& W) {
     for (int p = 0; p < q.size(); ++p)
       for (int i = 0; i < tr.n; ++i)
         for (int j = 0; j < tw.n; ++j) local[i * tw.n + j] += q.weights[p] * detJ * tr.value[p][i] * tw.value[p][j];
+    if (weight)
+      for (double& m : local) m *= (*weight)[c];
     const auto ri = R.cell_dofs(c), wj = W.cell_dofs(c);
     for (int i = 0; i < tr.n; ++i)
       for (int j = 0; j < tw.n; ++j)
         for (int k = 0; k < nc; ++k) t.emplace_back(R.dof(ri[i], k), W.dof(wj[j], k), local[i * tw.n + j]);
   }
   return from_triplets(R.n_dofs(), W.n_dofs(), t);
+}
+
+// A per-cell coefficient must have one value per cell of the mesh.
+void check_cells(const CellCoefficient& a, const Mesh& mesh, const char* what) {
+  if (!a.is_uniform() && static_cast<int>(a.per_cell().size()) != mesh.n_cells())
+    throw InputError(std::string(what) + ": " + std::to_string(a.per_cell().size()) + " cell values for a mesh of " +
+                     std::to_string(mesh.n_cells()) + " cells");
+}
+
+}  // namespace
+
+SparseMatrix assemble_mass(const FESpace& R, const FESpace& W) { return weighted_mass(R, W, nullptr); }
+
+SparseMatrix assemble_mass(const FESpace& R, const FESpace& W, const CellCoefficient& rho) {
+  check_cells(rho, W.mesh(), "assemble_mass");
+  // Uniform: ρ times the unweighted sums, the order of the products of every
+  // single-material result (so that they stay bit for bit what they were).
+  if (rho.is_uniform()) return rho.value() * weighted_mass(R, W, nullptr);
+  return weighted_mass(R, W, &rho);
 }
 
 SparseMatrix assemble_laplace(const FESpace& W) {
@@ -104,9 +128,11 @@ SparseMatrix assemble_laplace(const FESpace& W) {
   return from_triplets(W.n_dofs(), W.n_dofs(), t);
 }
 
-SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu) {
+SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda_c, const CellCoefficient& mu_c) {
   if (W.components() != 2 || W.dim() != 2)
     throw InputError("assemble_elasticity: a 2-component space on a 2D mesh is expected");
+  check_cells(lambda_c, W.mesh(), "assemble_elasticity: lambda");
+  check_cells(mu_c, W.mesh(), "assemble_elasticity: mu");
   const QuadratureRule q = cell_quadrature(2, 2 * (W.degree() - 1));
   const Tabulation tw(W, q);
   const int n = tw.n, m = 2 * n;  // local vector dofs: (scalar i, component k) -> 2i + k
@@ -116,6 +142,7 @@ SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu) {
   std::vector<double> local(m * m);
   for (int c = 0; c < W.mesh().n_cells(); ++c) {
     const CellGeometry K(W.mesh(), c);
+    const double lambda = lambda_c[c], mu = mu_c[c];  // the cell's material (one for all cells: uniform)
     std::fill(local.begin(), local.end(), 0.0);
     for (int p = 0; p < q.size(); ++p) {
       for (int i = 0; i < n; ++i) g[i] = K.gradient(tw.gradient[p][i]);
@@ -143,7 +170,10 @@ SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu) {
   return from_triplets(W.n_dofs(), W.n_dofs(), t);
 }
 
-Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t) {
+namespace {
+
+// L_i = ∫ w f·φ_i, w = weight(c) on cell c (nullptr: no weight, not even a product by 1).
+Eigen::VectorXd weighted_load(const FESpace& W, const CellCoefficient* weight, const std::vector<Field>& f, double t) {
   if (static_cast<int>(f.size()) != W.components()) throw InputError("assemble_load: one field per component expected");
   const QuadratureRule q = cell_quadrature(W.dim(), 2 * W.degree() + 2);
   const Tabulation tw(W, q);
@@ -154,12 +184,24 @@ Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, dou
     for (int p = 0; p < q.size(); ++p) {
       const Point x = K.map(q.points[p]);
       for (int k = 0; k < W.components(); ++k) {
-        const double fw = f[k](x, t) * q.weights[p] * K.det;
+        double fw = f[k](x, t) * q.weights[p] * K.det;
+        if (weight) fw *= (*weight)[c];
         for (int i = 0; i < tw.n; ++i) L[W.dof(d[i], k)] += fw * tw.value[p][i];
       }
     }
   }
   return L;
+}
+
+}  // namespace
+
+Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t) {
+  return weighted_load(W, nullptr, f, t);
+}
+
+Eigen::VectorXd assemble_load(const FESpace& W, const CellCoefficient& w, const std::vector<Field>& f, double t) {
+  check_cells(w, W.mesh(), "assemble_load");
+  return weighted_load(W, &w, f, t);
 }
 
 Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t) {

@@ -2,6 +2,7 @@
 //
 //   A_ij = a(φ_i, φ_j)    stiffness: the Laplacian ∫∇φ_i·∇φ_j, or plane-strain
 //                         elasticity ∫ λ div φ_i div φ_j + 2μ ε(φ_i):ε(φ_j)
+//                         (λ, μ constant per cell: fe/cell_coefficient.hpp)
 //   B_ij = ∫ ψ_i φ_j      mixed mass, rows in H^h (velocity), columns in W^h
 //   C_ij = ∫ ψ_i ψ_j      mass of H^h  (= assemble_mass(H, H))
 //   L_i  = l(φ_i) = ∫ f φ_i
@@ -15,6 +16,7 @@
 
 #include <Eigen/Sparse>
 
+#include "cdyn/fe/cell_coefficient.hpp"
 #include "cdyn/fe/fe_space.hpp"
 
 namespace cdyn {
@@ -25,18 +27,29 @@ using SparseMatrix = Eigen::SparseMatrix<double>;
 // components; componentwise product for vector spaces).  C = assemble_mass(H, H).
 SparseMatrix assemble_mass(const FESpace& rows, const FESpace& cols);
 
+// The same weighted by a coefficient constant per cell, ∫ ρ ψ_i · φ_j (the density of
+// seed eq. 1).  A uniform ρ gives exactly ρ · assemble_mass(rows, cols) — the product
+// taken after the sum, as every single-material result was computed; a per-cell ρ
+// scales each cell's local matrix before it is summed.
+SparseMatrix assemble_mass(const FESpace& rows, const FESpace& cols, const CellCoefficient& rho);
+
 // A_ij = ∫ ∇φ_i · ∇φ_j on a scalar space (scale by E or c² outside).
 SparseMatrix assemble_laplace(const FESpace& W);
 
 // Plane-strain elasticity on a 2-component space of a 2D mesh:
-// A_ij = ∫ λ div φ_i div φ_j + 2μ ε(φ_i) : ε(φ_j).
-SparseMatrix assemble_elasticity(const FESpace& W, double lambda, double mu);
+// A_ij = ∫ λ div φ_i div φ_j + 2μ ε(φ_i) : ε(φ_j), λ and μ constant on each cell (one
+// number each for a single material).
+SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda, const CellCoefficient& mu);
 
 // L_i = ∫ f(x, y, t) φ_i, one field per component of W.  The rule has degree
 // 2·deg(W) + 2 so that the quadrature error is below the discretization error of
 // smooth data.
 Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t = 0.0);
 Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t = 0.0);
+
+// L_i = ∫ w f(x, y, t) · φ_i with a weight constant per cell, e.g. the weight ρ g of a
+// body of several densities under gravity g (f = g, w = ρ).  Same rule as above.
+Eigen::VectorXd assemble_load(const FESpace& W, const CellCoefficient& w, const std::vector<Field>& f, double t = 0.0);
 
 // Boundary load (the Neumann term of l, seed eq. 3): L_i = ∫_{Γ_N} g(x, y, t) · φ_i ds
 // over the boundary facets of the given parts (indices into mesh.part_names), one field

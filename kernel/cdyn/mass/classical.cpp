@@ -64,12 +64,12 @@ SparseMatrix diagonal(const Eigen::VectorXd& d) {
 }  // namespace
 
 std::unique_ptr<MassModel> make_classical_mass_model(const FESpace& W, const DirichletLift& bc,
-                                                     MassSpec::Model model, double rho,
+                                                     MassSpec::Model model, const CellCoefficient& rho,
                                                      const std::vector<int>& contact_free_dofs) {
   const MassSpec spec{model, W.element(), Element::P0};
   const std::string name = spec.name();
   if (!W.has_vertex_dofs()) throw InputError("mass", name + ": the displacement space must be continuous");
-  const SparseMatrix Mfull = rho * assemble_mass(W, W);
+  const SparseMatrix Mfull = assemble_mass(W, W, rho);  // ρ ∫φ_iφ_j, ρ per cell
   const SparseMatrix Mff = bc.restrict(Mfull);  // the consistent mass on the free dofs
 
   if (model == MassSpec::Model::Consistent) return std::make_unique<ClassicalMassModel>(spec, Mff, Mff, Mff);

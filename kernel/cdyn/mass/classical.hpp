@@ -22,7 +22,7 @@ namespace cdyn {
 
 // model: Consistent, Lumped or Redistributed; contact_free_dofs only for the last.
 std::unique_ptr<MassModel> make_classical_mass_model(const FESpace& W, const DirichletLift& bc,
-                                                     MassSpec::Model model, double rho,
+                                                     MassSpec::Model model, const CellCoefficient& rho,
                                                      const std::vector<int>& contact_free_dofs);
 
 }  // namespace cdyn

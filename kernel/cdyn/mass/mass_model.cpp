@@ -11,9 +11,11 @@
 namespace cdyn {
 
 std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const MassSpec& spec,
-                                           double rho, const std::vector<int>& contact_free_dofs) {
-  if (!(rho > 0.0) || !std::isfinite(rho))
-    throw InputError("rho", "the density must be positive and finite (got " + to_text(rho) + ")");
+                                           const CellCoefficient& rho, const std::vector<int>& contact_free_dofs) {
+  // (min and max: a NaN fails one of the two comparisons wherever it sits)
+  if (!(rho.min() > 0.0) || !std::isfinite(rho.max()) || !(rho.max() > 0.0))
+    throw InputError("rho", "the density must be positive and finite (got " +
+                                to_text(rho.min() > 0.0 ? rho.max() : rho.min()) + ")");
   if (spec.W != W.element())
     throw InputError("pair", "'" + spec.name() + "': the displacement space is " + to_string(W.element()) +
                                  ", not " + to_string(spec.W));
@@ -22,7 +24,7 @@ std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift
 }
 
 std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const std::string& spec,
-                                           double rho, const std::vector<int>& contact_free_dofs) {
+                                           const CellCoefficient& rho, const std::vector<int>& contact_free_dofs) {
   return make_mass_model(W, bc, MassSpec::parse(spec, W.element()), rho, contact_free_dofs);
 }
 

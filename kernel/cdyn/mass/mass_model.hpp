@@ -81,11 +81,15 @@ class MassModel {
 namespace cdyn {
 
 // The mass model `spec` on the free dofs of W^h (Dirichlet dofs of `bc` eliminated),
-// with density ρ (spec.W must be W's element):
+// with density ρ (spec.W must be W's element).  ρ is one number or one value per cell
+// (fe/cell_coefficient.hpp: a body of several materials); every "ρ ∫" below is then
+// ∫ ρ, cell by cell, and the single-material matrices are bit for bit unchanged:
 //
 //  - a pair W^h/H^h (seed eqs. 10–11), H^h with as many components as W^h.  B and C are
 //    assembled with ρ (ρB, ρC), so that M = ρ Bᵀ C⁻¹ B, V = C⁻¹ B U̇ does not depend on
-//    ρ and the kinetic energy is ½ Vᵀ (ρC) V.  A continuous H^h takes the Dirichlet
+//    a uniform ρ and the kinetic energy is ½ Vᵀ (ρC) V.  (With H^h = P0 a per-cell ρ
+//    scales the rows of B and C of each cell alike, so V = C⁻¹ B U̇ is still the cell
+//    mean of U̇; with a continuous H^h, V is the ρ-weighted L² projection of U̇.)  A continuous H^h takes the Dirichlet
 //    conditions of W^h: its dofs at the fixed vertices (and, for H^h = W^h, every fixed
 //    dof) are removed, so the velocity vanishes where the displacement is prescribed and
 //    P1/P1 is exactly the consistent mass M_ff.  H^h = P2 needs W^h = P2 (its edge dofs
@@ -101,14 +105,14 @@ namespace cdyn {
 //    every normal N_i is in Ker M; the recommended choice) or only the one component
 //    the constraint acts on (an axis-aligned normal).
 // `contact_free_dofs` is ignored by every other model.  Throws InputError (parameter
-// "rho" for ρ ≤ 0, "pair" for a pair W's mesh cannot carry, a spec whose W is not W's
+// "rho" for ρ ≤ 0 on some cell, "pair" for a pair W's mesh cannot carry, a spec whose W is not W's
 // element, or a redistribution with no donors).
 std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const MassSpec& spec,
-                                           double rho, const std::vector<int>& contact_free_dofs = {});
+                                           const CellCoefficient& rho, const std::vector<int>& contact_free_dofs = {});
 
 // The same with the spec in text form (MassSpec::parse with W's element).
 std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift& bc, const std::string& spec,
-                                           double rho, const std::vector<int>& contact_free_dofs = {});
+                                           const CellCoefficient& rho, const std::vector<int>& contact_free_dofs = {});
 
 // The blocks of the pair W^h/H^h on the free dofs: B (N_H × n_free) and C (N_H × N_H),
 // both multiplied by ρ; the H^h dofs removed by the Dirichlet conditions (see
@@ -120,7 +124,7 @@ struct MixedBlocks {
   int n_velocity_full = 0;           // dofs of H^h before elimination
   std::vector<int> velocity_fixed;   // eliminated dofs of H^h
 };
-MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element H, double rho,
+MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element H, const CellCoefficient& rho,
                          bool velocity_dirichlet = true);
 
 }  // namespace cdyn

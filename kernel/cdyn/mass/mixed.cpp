@@ -120,12 +120,16 @@ class MixedMassModel final : public MassModel {
 
 }  // namespace
 
-MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, double rho, bool velocity_dirichlet) {
+MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, const CellCoefficient& rho,
+                         bool velocity_dirichlet) {
   if (!W.has_vertex_dofs()) throw InputError("pair", "the displacement space W^h must be continuous (not P0)");
   if (bc.n_full() != W.n_dofs()) throw InputError("mixed_blocks: the Dirichlet partition does not belong to W^h");
   const FESpace H(W.mesh(), He, W.components());
-  const SparseMatrix Bfull = assemble_mass(H, W);  // B_ij = ∫ψ_i φ_j  (seed, eq. 10)
-  const SparseMatrix Cfull = assemble_mass(H, H);  // C_ij = ∫ψ_i ψ_j
+  // B_ij = ∫ ρ ψ_i φ_j, C_ij = ∫ ρ ψ_i ψ_j (seed eq. 10 with the density inside; a uniform
+  // ρ multiplies the sums, which commutes with the extraction of the free rows below
+  // entry by entry, so the blocks are those of ρ · submatrix as before).
+  const SparseMatrix Bfull = assemble_mass(H, W, rho);
+  const SparseMatrix Cfull = assemble_mass(H, H, rho);
 
   // The Dirichlet conditions of W^h carried to a continuous H^h: the velocity of a
   // fixed vertex is the rate of constant data, zero.
@@ -154,12 +158,13 @@ MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element He, 
   }
   std::vector<int> col_index(W.n_dofs());
   for (int j = 0; j < W.n_dofs(); ++j) col_index[j] = bc.free_index(j);
-  out.B = rho * submatrix(Bfull, row_index, nh, col_index, bc.n_free());
-  out.C = rho * submatrix(Cfull, row_index, nh, row_index, nh);
+  out.B = submatrix(Bfull, row_index, nh, col_index, bc.n_free());
+  out.C = submatrix(Cfull, row_index, nh, row_index, nh);
   return out;
 }
 
-std::unique_ptr<MassModel> make_mixed_mass_model(const FESpace& W, const DirichletLift& bc, Element H, double rho) {
+std::unique_ptr<MassModel> make_mixed_mass_model(const FESpace& W, const DirichletLift& bc, Element H,
+                                                 const CellCoefficient& rho) {
   MixedBlocks blocks = mixed_blocks(W, bc, H, rho, true);
   return std::make_unique<MixedMassModel>(to_string(W.element()) + "/" + to_string(H), std::move(blocks),
                                           H == Element::P0);

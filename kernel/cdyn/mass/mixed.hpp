@@ -20,6 +20,7 @@ namespace cdyn {
 
 // The pair W.element()/H on W's free dofs.  Throws InputError if W is not continuous
 // or H = P2 with W ≠ P2.
-std::unique_ptr<MassModel> make_mixed_mass_model(const FESpace& W, const DirichletLift& bc, Element H, double rho);
+std::unique_ptr<MassModel> make_mixed_mass_model(const FESpace& W, const DirichletLift& bc, Element H,
+                                                 const CellCoefficient& rho);
 
 }  // namespace cdyn

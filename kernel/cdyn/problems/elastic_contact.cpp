@@ -20,11 +20,12 @@ Point unit(const Point& n) {
   return {n.x / norm, n.y / norm};
 }
 
-void check_material(const ElasticContactData& d) {
-  if (!(d.rho > 0.0) || !std::isfinite(d.rho)) throw InputError("rho", "must be positive");
-  if (!(d.mu > 0.0) || !std::isfinite(d.mu)) throw InputError("mu", "the shear modulus must be positive");
-  if (!(d.lambda + d.mu > 0.0) || !std::isfinite(d.lambda))
-    throw InputError("lambda", "plane strain needs λ + μ > 0 (got λ = " + std::to_string(d.lambda) + ")");
+// `where` is "" for the body's material, else " (region 'name')".
+void check_material(const Material& m, const std::string& where) {
+  if (!(m.rho > 0.0) || !std::isfinite(m.rho)) throw InputError("rho", "must be positive" + where);
+  if (!(m.mu > 0.0) || !std::isfinite(m.mu)) throw InputError("mu", "the shear modulus must be positive" + where);
+  if (!(m.lambda + m.mu > 0.0) || !std::isfinite(m.lambda))
+    throw InputError("lambda", "plane strain needs λ + μ > 0 (got λ = " + std::to_string(m.lambda) + ")" + where);
 }
 
 // One bound of K̄^h: unknown `index` ≥ (or ≤) factor·g(a, t) + offset, with
@@ -117,6 +118,31 @@ Lame lame_parameters(double E, double nu) {
   return {E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))};
 }
 
+CellMaterials cell_materials(const Mesh& mesh, const ElasticContactData& d) {
+  const Material body{d.rho, d.lambda, d.mu};
+  check_material(body, "");
+  if (d.region_materials.empty()) return {d.rho, d.lambda, d.mu};
+  const int n_regions = static_cast<int>(mesh.region_names.size());
+  std::vector<const Material*> of_region(n_regions, nullptr);
+  for (const auto& [r, m] : d.region_materials) {
+    if (r < 0 || r >= n_regions || mesh.cell_region.empty())
+      throw InputError("regions", "region " + std::to_string(r) + " is not a region of the mesh (it has " +
+                                      std::to_string(n_regions) + ")");
+    if (of_region[r]) throw InputError("regions", "region '" + mesh.region_names[r] + "' is given two materials");
+    check_material(m, " (region '" + mesh.region_names[r] + "')");
+    of_region[r] = &m;
+  }
+  std::vector<double> rho(mesh.n_cells()), lambda(mesh.n_cells()), mu(mesh.n_cells());
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    const int r = mesh.cell_region[c];
+    const Material& m = r >= 0 && of_region[r] ? *of_region[r] : body;
+    rho[c] = m.rho;
+    lambda[c] = m.lambda;
+    mu[c] = m.mu;
+  }
+  return {CellCoefficient(std::move(rho)), CellCoefficient(std::move(lambda)), CellCoefficient(std::move(mu))};
+}
+
 double obstacle_gap(const ElasticContactData& d, const Point& a) {
   const Point n = unit(d.obstacle_normal);
   return -((a.x - d.obstacle_point.x) * n.x + (a.y - d.obstacle_point.y) * n.y);
@@ -130,7 +156,7 @@ std::vector<RigidObstacle> obstacles_of(const ElasticContactData& d) {
 
 ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& d) {
   if (mesh.dim != 2) throw InputError("mesh", "plane-strain elasticity needs a 2D mesh");
-  check_material(d);
+  const CellMaterials material = cell_materials(mesh, d);
   const std::vector<RigidObstacle> obstacles = obstacles_of(d);
   if (d.obstacle && obstacles.empty()) throw InputError("contact", "elasticity with an obstacle needs a contact part Γ_C");
   for (const RigidObstacle& o : obstacles)
@@ -139,13 +165,26 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   p.W = std::make_unique<FESpace>(mesh, d.mass.W, 2);
   const FESpace& W = *p.W;
   p.bc = std::make_unique<DirichletLift>(W, d.dirichlet_parts, d.dirichlet_components);
-  p.A_full = assemble_elasticity(W, d.lambda, d.mu);
+  p.A_full = assemble_elasticity(W, material.lambda, material.mu);
 
-  // L(t) = ∫_Ω f·φ_i + ∫_{Γ_N} g_N·φ_i.
-  const std::vector<Field> f(d.f.begin(), d.f.end()), gN(d.traction.begin(), d.traction.end());
+  // L(t) = ∫_Ω (f + ρ g)·φ_i + ∫_{Γ_N} g_N·φ_i.  One density: ρ g is added to f at the
+  // quadrature points; several: ∫ ρ g·φ_i is a load of its own, weighted cell by cell.
+  std::vector<Field> f(d.f.begin(), d.f.end());
+  const std::vector<Field> gN(d.traction.begin(), d.traction.end());
   const std::vector<int> neumann = d.neumann_parts;
-  p.L_full = [&W, f, gN, neumann](double t) {
+  const std::array<double, 2> g = d.gravity;
+  const CellCoefficient rho = material.rho;
+  if (rho.is_uniform())
+    for (int k : {0, 1})
+      f[k] = [fk = f[k], rho_g = rho.value() * g[k]](const Point& x, double t) { return fk(x, t) + rho_g; };
+  const bool weighted_gravity = !rho.is_uniform() && (g[0] != 0.0 || g[1] != 0.0);
+  p.L_full = [&W, f, gN, neumann, g, rho, weighted_gravity](double t) {
     Eigen::VectorXd L = assemble_load(W, f, t);
+    if (weighted_gravity) {
+      const std::vector<Field> gk{[g0 = g[0]](const Point&, double) { return g0; },
+                                  [g1 = g[1]](const Point&, double) { return g1; }};
+      L += assemble_load(W, rho, gk, t);
+    }
     if (!neumann.empty()) L += assemble_boundary_load(W, neumann, gN, t);
     return L;
   };
@@ -177,7 +216,7 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
 
   // Redistributed mass: both components of each contact node are massless, so every
   // normal N_i is in Ker M whatever its direction (mass/mass_model.hpp).
-  std::unique_ptr<MassModel> mass = make_mass_model(W, *p.bc, d.mass, d.rho, contact.contact_dofs);
+  std::unique_ptr<MassModel> mass = make_mass_model(W, *p.bc, d.mass, material.rho, contact.contact_dofs);
 
   if (contact.rotation.nodes.empty()) {
     p.A = A_ff;

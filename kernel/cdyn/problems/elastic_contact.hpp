@@ -16,6 +16,11 @@
 // An obstacle whose φ depends on t moves: the bounds are then K̄^h(t)
 // (ConstrainedProblem::moving_bounds), the normals those of t = 0.
 //
+// Materials.  ρ, λ, μ are one material for the whole body, or one per mesh region
+// (Mesh::cell_region, the gmsh physical surfaces): the integrals above are then taken
+// cell by cell with the cell's values (fe/cell_coefficient.hpp), which is exact for
+// interfaces along cell edges.  A body of one material is computed exactly as before.
+//
 // The rigid plane (convention, docs/elasticity.md).  The plane passes through the point
 // p and n is its unit normal pointing from the obstacle INTO the body's side (the
 // obstacle's outward normal).  A contact vertex a may not cross it:
@@ -36,8 +41,10 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "cdyn/fe/cell_coefficient.hpp"
 #include "cdyn/mesh/mesh.hpp"
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/problems/rigid_obstacle.hpp"
@@ -47,11 +54,21 @@ namespace cdyn {
 // The zero field, the default of every datum below.
 inline double zero_field(double, double, double) { return 0.0; }
 
+// An isotropic linear elastic material: density and Lamé parameters (plane strain).
+struct Material {
+  double rho = 1.0;
+  double lambda = 1.0, mu = 1.0;
+};
+
 struct ElasticContactData {
   MassSpec mass;                   // the pair W^h/H^h (P1+/P0 by default) or a classical mass on W^h
   double rho = 1.0;                // density
   double lambda = 1.0, mu = 1.0;   // Lamé parameters (plane strain; lame_parameters(E, ν))
+  // Materials by region: (index into mesh.region_names, its material).  The cells of the
+  // regions not listed, and every cell of a mesh without regions, take rho, lambda, mu.
+  std::vector<std::pair<int, Material>> region_materials;
   std::array<Field, 2> f{zero_field, zero_field};   // body force (f_x, f_y)(x, y, t)
+  std::array<double, 2> gravity{0.0, 0.0};          // an acceleration g: ρ g is added to f, ρ of each cell
   bool load_is_constant = true;    // neither f nor the traction depends on t
 
   std::vector<int> dirichlet_parts;                // Γ_D (indices into mesh.part_names)
@@ -78,6 +95,17 @@ struct Lame {
   double lambda = 0.0, mu = 0.0;
 };
 Lame lame_parameters(double E, double nu);
+
+// ρ, λ, μ on every cell of `mesh`: the material of the cell's region when
+// data.region_materials names it, else data's rho, lambda, mu.  Uniform coefficients
+// when every cell has the same material (fe/cell_coefficient.hpp).  InputError for a
+// region index the mesh does not have, a region listed twice, or a material with
+// ρ ≤ 0, μ ≤ 0 or λ + μ ≤ 0 (parameters "rho", "mu", "lambda"; the message names the
+// region).
+struct CellMaterials {
+  CellCoefficient rho, lambda, mu;
+};
+CellMaterials cell_materials(const Mesh& mesh, const ElasticContactData& data);
 
 // g(a) = −(a − p)·n: the lower bound of n·u(a) (n normalized) for the single plane.
 double obstacle_gap(const ElasticContactData& data, const Point& a);

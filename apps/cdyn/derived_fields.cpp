@@ -1,0 +1,55 @@
+// derived_fields.cpp — σ, ε, von Mises, contact pressure and regions as VTU arrays.
+#include "derived_fields.hpp"
+
+#include "cdyn/post/stress.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+// A symmetric plane-strain tensor as the 9 components of a 3 × 3 tensor, row by row
+// (xx xy xz / yx yy yz / zx zy zz), the layout ParaView reads as a tensor.
+void append_tensor(std::vector<double>& to, const PlaneStrainTensor& t) {
+  to.insert(to.end(), {t.xx, t.xy, 0.0, t.xy, t.yy, 0.0, 0.0, 0.0, t.zz});
+}
+
+// sigma, epsilon (9 components) and von_mises (1) of a list of stress states.
+std::vector<FieldArray> stress_arrays(const std::vector<StressState>& states) {
+  FieldArray sigma{"sigma", 9, {}}, epsilon{"epsilon", 9, {}}, vm{"von_mises", 1, {}};
+  for (const StressState& s : states) {
+    append_tensor(sigma.values, s.sigma);
+    append_tensor(epsilon.values, s.epsilon);
+    vm.values.push_back(s.von_mises);
+  }
+  return {std::move(sigma), std::move(epsilon), std::move(vm)};
+}
+
+}  // namespace
+
+DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
+  if (sim.components == 2 && sim.has_plane)
+    contact_.emplace(sim.problem, sim.contact_parts, sim.plane_point, sim.plane_normal);
+}
+
+ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy) const {
+  ExtraFields out;
+  const Mesh& mesh = *sim_.mesh;
+  if (sim_.components == 2 && sim_.spec.output.stress) {
+    const std::vector<StressState> cells =
+        cell_stress(*sim_.problem.W, U_full, sim_.materials.lambda, sim_.materials.mu);
+    out.cell = stress_arrays(cells);
+    out.point = stress_arrays(vertex_stress(mesh, cells));
+  }
+  if (contact_) {
+    FieldArray pressure{"contact_pressure", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
+    if (reaction_xy.size() > 0)
+      for (const ContactPressure::Vertex& a : contact_->vertices())
+        pressure.values[a.vertex] = contact_->pressure(reaction_xy, a);
+    out.point.push_back(std::move(pressure));
+  }
+  if (sim_.components == 2 && !mesh.cell_region.empty())
+    out.cell.push_back({"region", 1, std::vector<double>(mesh.cell_region.begin(), mesh.cell_region.end())});
+  return out;
+}
+
+}  // namespace cdyn::app
