@@ -34,7 +34,9 @@
 #include "cdyn/fe/fe_space.hpp"
 #include "cdyn/mesh/mesh.hpp"
 #include "cdyn/qp/step_solver.hpp"
+#ifdef CDYN_WITH_IPOPT
 #include "cdyn/qp/ipopt.hpp"
+#endif
 #include "cdyn/qp/pdas/pdas.hpp"
 
 namespace {
@@ -89,18 +91,24 @@ void cold(benchmark::State& state, const std::string& name) {
   const int n = static_cast<int>(state.range(0));
   const Obstacle& ob = obstacle(n);
   cdyn::QPResult res;
+#ifdef CDYN_WITH_IPOPT
   cdyn::IpoptSolver::Statistics ipopt;
+#endif
   for (auto _ : state) {
     auto solver = cdyn::make_step_solver(name, options_for(n));
     res = solver->solve(ob.qp);
     benchmark::DoNotOptimize(res.X.data());
+#ifdef CDYN_WITH_IPOPT
     if (auto* ip = dynamic_cast<cdyn::IpoptSolver*>(solver.get())) ipopt = ip->last();
+#endif
   }
   report(state, ob.qp, res);
+#ifdef CDYN_WITH_IPOPT
   if (name == "ipopt") {  // what Ipopt reached alone, and the crossover's PDAS solves
     state.counters["ipopt_kkt"] = ipopt.ipopt_kkt_residual;
     state.counters["crossover"] = ipopt.crossover_solves;
   }
+#endif
 }
 
 void pdas_warm(benchmark::State& state) {
@@ -144,7 +152,7 @@ void pdas_sequence(benchmark::State& state) {
 void register_all() {
   const bool all = std::getenv("CDYN_BENCH_ALL") != nullptr;
   const std::vector<int> sizes = {20, 40, 80, 160, 320};
-  for (const std::string name : {"pdas", "ipopt", "pgs", "nlopt"}) {
+  for (const std::string& name : cdyn::step_solver_names()) {  // the solvers this build has
     const std::string label = std::string("cold/").append(name);
     auto* b = benchmark::RegisterBenchmark(label.c_str(), cold, name)->Unit(benchmark::kMillisecond);
     for (int n : sizes)

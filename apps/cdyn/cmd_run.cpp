@@ -31,6 +31,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/fields_output.hpp"
 #include "cdyn/post/contact_force.hpp"
+#include "cdyn/post/contact_pressure.hpp"
 #include "cdyn/post/linear_momentum.hpp"
 #include "commands.hpp"
 #include "contact_history.hpp"
@@ -67,8 +68,14 @@ std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::V
   for (const Eigen::VectorXd* field : {&U_full, &rate_full})
     for (int k = 0; k < sim.components; ++k) out.push_back(W.value_in_cell(*field, pr.where.cell, pr.where.xi, k));
   const Point lambda = vertex_multiplier(sim.problem, reaction_xy, pr.vertex);
-  const Point n = sim.plane_normal;
-  out.push_back(sim.components == 1 ? lambda.x : lambda.x * n.x + lambda.y * n.y + 0.0);  // λ_N = λ·n (+ 0.0: no −0)
+  if (sim.components == 1) {
+    out.push_back(lambda.x);
+    return out;
+  }
+  Point n;  // the normal of the obstacle that constrains the vertex (λ = 0 elsewhere)
+  for (const auto& c : sim.problem.contact_nodes)
+    if (c.vertex == pr.vertex) n = c.normal;
+  out.push_back(lambda.x * n.x + lambda.y * n.y + 0.0);  // λ_N = λ·n (+ 0.0: no −0)
   return out;
 }
 
@@ -125,7 +132,11 @@ class History {
     if (sim.components == 2) {
       momentum_.emplace(sim.problem);
       csv_ << ",contact_force,px,py";
-      if (sim.has_plane) contact_.emplace(sim, out / "contact.csv");
+      if (sim.has_obstacle) {
+        contact_.emplace(sim, out / "contact.csv");
+        penetration_.emplace(sim.problem);
+        csv_ << ",penetration";
+      }
     }
     for (const auto& pr : sim.probes)
       for (const std::string& c : probe_columns(sim, pr)) csv_ << "," << c;
@@ -145,6 +156,11 @@ class History {
       const Point P = (*momentum_)(s.V);
       csv_ << "," << force << "," << P.x << "," << P.y;
       impact_.observe({step, s.t, E.total(), E.kinetic, P}, st.active, force);
+      if (penetration_) {
+        const double depth = (*penetration_)(U_full, s.t);
+        max_penetration_ = std::max(max_penetration_, depth);
+        csv_ << "," << depth;
+      }
     }
     for (const auto& pr : sim_.probes)
       for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv_ << "," << v;
@@ -158,8 +174,10 @@ class History {
     if (contact_) contact_->close();
   }
 
-  // summary.json's "impact" (elasticity against a plane), else null.
+  // summary.json's "impact" (elasticity against rigid obstacles), else null.
   nlohmann::ordered_json impact() const { return contact_ ? impact_json(impact_.summary(sim_.dt)) : nlohmann::ordered_json(); }
+  // The largest penetration of the whole boundary into the obstacles so far.
+  double max_penetration() const { return max_penetration_; }
 
  private:
   const Simulation& sim_;
@@ -167,6 +185,8 @@ class History {
   std::ostream& csv_;
   std::optional<LinearMomentum> momentum_;
   std::optional<ContactHistory> contact_;
+  std::optional<BoundaryPenetration> penetration_;
+  double max_penetration_ = 0.0;
   ImpactMonitor impact_;
 };
 
@@ -278,7 +298,7 @@ int cmd_run(const RunOptions& opt) {
     qp_seconds += st.qp_seconds;
     max_active = std::max(max_active, st.active);
     max_kkt = std::max(max_kkt, st.kkt_residual);
-    max_violation = std::max(max_violation, p.max_violation(s.U));
+    max_violation = std::max(max_violation, p.max_violation(s.U, s.t));
     record(n, st, E);
     steps_done = n;
     write_fields_at(n);
@@ -331,7 +351,10 @@ int cmd_run(const RunOptions& opt) {
   j["kkt_residual_max"] = max_kkt;
   j["fields_s"] = fields_seconds;
   if (u_exact) j["error_exact"] = l2_error_at(sim, *u_exact, s);  // ‖u_h(T) − u(T)‖_L2
-  if (sim.has_plane) j["impact"] = history.impact();
+  if (sim.has_obstacle) {
+    j["impact"] = history.impact();
+    j["max_penetration"] = history.max_penetration();  // the whole boundary against every obstacle
+  }
   j["wellposed"] = wellposedness_summary(sim);
   const SceneSpec::Units& units = sim.spec.units;
   j["units"] = units.length.empty() ? nlohmann::ordered_json()

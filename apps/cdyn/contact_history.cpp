@@ -5,7 +5,7 @@ namespace cdyn::app {
 
 ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file)
     : mesh_(*sim.mesh),
-      contact_(sim.problem, sim.contact_parts, sim.plane_point, sim.plane_normal),
+      contact_(sim.problem),
       file_(file),
       csv_(file_.stream()) {
   csv_.precision(17);
@@ -21,7 +21,7 @@ double ContactHistory::record(int step, double t, const Eigen::VectorXd& U_full,
     if (!write) continue;
     const Point& a = mesh_.vertices[c.vertex];
     csv_ << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << "," << c.s << ","
-         << contact_.gap(U_full, c) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0) << "\n";
+         << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0) << "\n";
   }
   return total;
 }

@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "cdyn/base/error.hpp"
-#include "cdyn/post/contact_pressure.hpp"
 
 namespace cdyn::app {
 
@@ -56,18 +55,30 @@ std::vector<std::string> run_warnings(const Simulation& sim) {
 
 void infeasible_initial_state(const Simulation& sim, double violation) {
   const std::string by = " (by " + std::to_string(violation) + ")";
-  if (sim.has_plane) {
-    // The gaps (a + u(a) − p)·n with n reversed: all ≥ 0 means the whole of Γ_C starts
-    // on the side the normal points away from.
-    const Point n = sim.plane_normal;
-    const ContactPressure flipped(sim.problem, sim.contact_parts, sim.plane_point, {-n.x, -n.y});
-    const Eigen::VectorXd U = sim.problem.full(sim.initial.U);
-    bool feasible = !flipped.vertices().empty();
-    for (const ContactPressure::Vertex& a : flipped.vertices()) feasible = feasible && flipped.gap(U, a) >= -1e-12;
-    if (feasible) {
+  const ConstrainedProblem& p = sim.problem;
+  const std::vector<SceneSpec::Rigid>& rigid = sim.spec.obstacle.rigid;
+  if (sim.has_obstacle && p.obstacles.size() == rigid.size()) {
+    // A plane given by its normal (no gap function), all of whose contact vertices start
+    // at φ(a + u(a), 0) ≤ 0, some below: the body lies on the side the normal points
+    // away from, and the reversed normal would make the start feasible.
+    const Eigen::VectorXd U = p.full(sim.initial.U);
+    const FESpace& W = *p.W;
+    for (std::size_t k = 0; k < rigid.size(); ++k) {
+      if (rigid[k].gap) continue;
+      bool reversed_feasible = true, violated = false;
+      for (const auto& c : p.contact_nodes) {
+        if (c.obstacle != static_cast<int>(k)) continue;
+        const Point& a = sim.mesh->vertices[c.vertex];
+        const Point x{a.x + U[W.vertex_dof(c.vertex, 0)], a.y + U[W.vertex_dof(c.vertex, 1)]};
+        const double phi = p.obstacles[k].gap(x, 0.0);
+        reversed_feasible = reversed_feasible && phi <= 1e-12;
+        violated = violated || phi < -1e-12;
+      }
+      if (!reversed_feasible || !violated) continue;
+      const Point n = rigid[k].normal;
       char flip[80];
       std::snprintf(flip, sizeof flip, "[%g, %g]", -n.x + 0.0, -n.y + 0.0);  // + 0.0: no "-0"
-      throw InputError("obstacle.normal: the body starts on the wrong side of the plane" + by +
+      throw InputError(rigid[k].key + ".normal: the body starts on the wrong side of the plane" + by +
                        "; the normal points from the obstacle into the body's side, and " + flip +
                        " would make the initial state feasible");
     }

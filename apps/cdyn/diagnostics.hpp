@@ -21,9 +21,10 @@ namespace cdyn::app {
 std::vector<std::string> run_warnings(const Simulation& sim);
 
 // Throws the InputError for an initial state that violates the obstacle by
-// `violation`.  It names initial.u, or obstacle.normal when the body lies entirely on
-// the other side of the plane (flipping the normal would make the state feasible: the
-// normal points from the obstacle into the body's side).
+// `violation`.  It names initial.u, or the normal of a plane (obstacle.normal,
+// obstacles[k].normal) when all the plane's contact vertices lie on its other side:
+// flipping the normal would make the state feasible (the normal points from the
+// obstacle into the body's side).
 [[noreturn]] void infeasible_initial_state(const Simulation& sim, double violation);
 
 }  // namespace cdyn::app

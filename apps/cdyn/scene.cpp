@@ -25,7 +25,8 @@ const std::set<std::string> kKnownKeys = {
     "dirichlet.parts", "dirichlet.value", "dirichlet.components",
     "neumann.parts",  "neumann.traction",
     "obstacle.enabled", "obstacle.where", "obstacle.g",
-    "obstacle.point", "obstacle.normal",
+    "obstacle.point", "obstacle.normal", "obstacle.gap",
+    "obstacles",
     "initial.u",      "initial.v",
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
@@ -36,6 +37,8 @@ const std::set<std::string> kKnownKeys = {
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
+// The keys of each table of the array [[obstacles]] (elasticity: more rigid obstacles).
+const std::set<std::string> kObstacleKeys = {"where", "point", "normal", "gap", "name"};
 
 bool is_known_table(const std::string& prefix) {
   return std::any_of(kKnownKeys.begin(), kKnownKeys.end(),
@@ -98,6 +101,17 @@ void Scene::validate(const toml::table& t, const std::string& prefix) const {
   for (const auto& [k, node] : t) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     if (kFreeTables.count(key)) continue;
+    if (key == "obstacles") {
+      const toml::array* a = node.as_array();
+      if (!a || !a->is_array_of_tables())
+        throw InputError(source_ + ": obstacles: expected an array of tables ([[obstacles]])");
+      for (std::size_t i = 0; i < a->size(); ++i)
+        for (const auto& [sub, _] : *a->get(i)->as_table())
+          if (!kObstacleKeys.count(std::string(sub.str())))
+            throw InputError(source_ + ": unknown key 'obstacles[" + std::to_string(i) + "]." + std::string(sub.str()) +
+                             "' (where, point, normal, gap, name)");
+      continue;
+    }
     if (node.is_table() && is_known_table(key)) {
       validate(*node.as_table(), key);
     } else if (!kKnownKeys.count(key)) {
@@ -150,6 +164,12 @@ const toml::node* Scene::find(const std::string& key) const {
 }
 
 bool Scene::has(const std::string& key) const { return find(key) != nullptr; }
+
+std::size_t Scene::count(const std::string& key) const {
+  const toml::node* n = find(key);
+  const toml::array* a = n ? n->as_array() : nullptr;
+  return a ? a->size() : 0;
+}
 
 const toml::node* Scene::find_required(const std::string& key, bool has_fallback) const {
   const toml::node* n = find(key);

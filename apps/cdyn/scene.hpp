@@ -28,6 +28,9 @@ class Scene {
   const std::string& name() const { return name_; }
   const std::string& source() const { return source_; }
   bool has(const std::string& key) const;
+  // The length of an array (0 when absent); its elements are "key[i]" (toml++ paths:
+  // obstacles[1].where).
+  std::size_t count(const std::string& key) const;
 
   double number(const std::string& key, std::optional<double> fallback = {}) const;
   int integer(const std::string& key, std::optional<int> fallback = {}) const;

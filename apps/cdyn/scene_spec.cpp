@@ -39,6 +39,31 @@ Point point(const Scene& s, const std::string& key, Point fallback) {
   return {c[0], c[1]};
 }
 
+// One rigid obstacle of elasticity from the table `key` ("obstacle" or "obstacles[k]").
+SceneSpec::Rigid rigid_obstacle(const Scene& s, const std::string& key) {
+  SceneSpec::Rigid r;
+  r.key = key;
+  r.name = s.string(key + ".name", key);
+  r.where = s.strings(key + ".where", {"vertices"});
+  if (r.where == std::vector<std::string>{"vertices"})
+    throw InputError(key + ".where: elasticity needs the contact boundary Γ_C (a part name, or \"boundary\")");
+  if (s.has(key + ".gap")) {
+    if (s.has(key + ".point") || s.has(key + ".normal"))
+      throw InputError(key + ".gap: give a gap function or a plane (point, normal), not both");
+    r.gap = expression(s, key + ".gap", "0");
+    return r;
+  }
+  const std::vector<std::string> p = s.strings(key + ".point", {"0", "0"});
+  if (p.size() != 2) throw InputError(key + ".point: expected two finite numbers [x, y] (or expressions in t)");
+  for (const std::string& text : p) {
+    Expression e{key + ".point", text, parse_expression(text, key + ".point"), depends_on_time(text)};
+    if (!std::isfinite(e.field(Point{}, 0.0))) throw InputError(key + ".point: expected two finite numbers [x, y]");
+    r.point.push_back(std::move(e));
+  }
+  r.normal = point(s, key + ".normal", {0.0, 1.0});
+  return r;
+}
+
 // Keys that belong to other models: naming one is a mistake (it would be ignored).
 void reject_keys(const Scene& s, const std::vector<std::string>& keys, const std::string& model) {
   for (const std::string& key : keys)
@@ -46,7 +71,8 @@ void reject_keys(const Scene& s, const std::vector<std::string>& keys, const std
 }
 const std::vector<std::string> kElasticityOnly = {"physics.nu",      "physics.lambda",   "physics.mu",
                                                   "physics.gravity", "dirichlet.components", "neumann.parts",
-                                                  "neumann.traction", "obstacle.point", "obstacle.normal"};
+                                                  "neumann.traction", "obstacle.point", "obstacle.normal",
+                                                  "obstacle.gap", "obstacles"};
 const std::vector<std::string> kScalarOnly = {"physics.tension", "physics.m", "physics.k", "obstacle.g"};
 // The oscillator is m, k, F(t) and g: the continuum's keys would be ignored.
 const std::vector<std::string> kNotOscillator = {"physics.rho", "physics.E", "physics.tension", "dirichlet.parts",
@@ -183,13 +209,20 @@ void read_boundary(const Scene& s, SceneSpec& spec) {
   o.enabled = s.boolean("obstacle.enabled", true);
   o.where = s.strings("obstacle.where", {"vertices"});
   if (nc == 2) {
-    if (o.where == std::vector<std::string>{"vertices"})
-      throw InputError("obstacle.where: elasticity needs the contact boundary Γ_C (a part name)");
-    o.point = point(s, "obstacle.point", {0.0, 0.0});
-    o.normal = point(s, "obstacle.normal", {0.0, 1.0});
+    if (s.has("obstacle.where") || !s.has("obstacles")) o.rigid.push_back(rigid_obstacle(s, "obstacle"));
+    for (std::size_t k = 0; k < s.count("obstacles"); ++k)
+      o.rigid.push_back(rigid_obstacle(s, "obstacles[" + std::to_string(k) + "]"));
   } else {
     o.g = expression(s, "obstacle.g", "0");
+    if (spec.physics.model == "oscillator" && o.g.depends_on_time)
+      throw InputError("obstacle.g: the oscillator's obstacle is a number (g may not depend on t)");
   }
+  // Prescribed motion of the boundary is not modelled: the velocity of a fixed dof is
+  // taken as 0 (the inertia of the data, M_fd Ü_D, does not enter; docs/scenes.md).
+  for (const Expression& e : spec.dirichlet.value)
+    if (e.depends_on_time)
+      throw InputError("dirichlet.value: data that vary in time are not supported (the inertia of a prescribed "
+                       "motion is not modelled); move the body with a moving obstacle or a traction instead");
   spec.initial.u = expressions(s, "initial.u", nc);
   spec.initial.v = expressions(s, "initial.v", nc);
 }
@@ -293,7 +326,7 @@ SceneSpec read_scene(const Scene& s) {
   return spec;
 }
 
-std::string scene_key(const std::string& parameter, const SceneSpec& spec) {
+std::string scene_key(const std::string& parameter, const SceneSpec& spec, const std::string& message) {
   static const std::map<std::string, std::string> fixed = {
       {"n", "mesh.n"},           {"length", "mesh.length"},         {"rho", "physics.rho"},
       {"E", "physics.E"},        {"nu", "physics.nu"},              {"lambda", "physics.lambda"},
@@ -305,6 +338,9 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec) {
   if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
   if (parameter == "kappa") return spec.physics.model == "bar" ? "physics.E" : "physics.tension";
   if (parameter == "pair" || parameter == "mass") return spec.method.key;
+  if (parameter == "gap")  // "... (obstacle NAME)" names the obstacle
+    for (const SceneSpec::Rigid& r : spec.obstacle.rigid)
+      if (message.find("(obstacle " + r.name + ")") != std::string::npos) return r.key + ".gap";
   return "";
 }
 

@@ -65,11 +65,22 @@ struct SceneSpec {
     std::vector<Expression> traction;
   } neumann;
 
+  // Elasticity: one rigid obstacle (problems/rigid_obstacle.hpp), a plane through p(t)
+  // with normal n, or a surface given by its gap function φ(x, y, t).
+  struct Rigid {
+    std::string key;                  // "obstacle" or "obstacles[k]", for messages
+    std::string name;
+    std::vector<std::string> where;   // Γ_C: part names, or "boundary" (every boundary facet)
+    std::vector<Expression> point;    // p(t), two expressions (plane)
+    Point normal{0.0, 1.0};           // n (plane)
+    std::optional<Expression> gap;    // φ(x, y, t) (a curved obstacle), instead of point/normal
+  };
+
   struct Obstacle {
     bool enabled = true;
-    std::vector<std::string> where;   // "vertices" or part names (Γ_C)
-    Expression g;                      // scalar models: the lower bound u ≥ g
-    Point point, normal{0.0, 1.0};     // elasticity: the rigid plane
+    std::vector<std::string> where;   // scalar models: "vertices" or part names
+    Expression g;                      // scalar models: the lower bound u ≥ g(x, y, t)
+    std::vector<Rigid> rigid;         // elasticity: [obstacle] and the tables of [[obstacles]]
   } obstacle;
 
   struct Initial {
@@ -115,7 +126,8 @@ SceneSpec read_scene(const Scene& scene);
 // The scene key that a kernel parameter name comes from ("dt" → "time.dt", "rho" →
 // "physics.rho", "pair" → method.pair or method.mass, ...), for the kernel's
 // InputError::parameter(); empty when the parameter is not a scene key.
-std::string scene_key(const std::string& parameter, const SceneSpec& spec);
+// (message: the kernel's, which names the obstacle an obstacle's parameter belongs to)
+std::string scene_key(const std::string& parameter, const SceneSpec& spec, const std::string& message = "");
 
 // Runs f; a kernel InputError naming a parameter is given the scene key instead
 // ("dt: must be positive" → "time.dt: must be positive").
@@ -124,7 +136,7 @@ auto with_scene_keys(const SceneSpec& spec, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const InputError& e) {
-    const std::string key = e.parameter().empty() ? "" : scene_key(e.parameter(), spec);
+    const std::string key = e.parameter().empty() ? "" : scene_key(e.parameter(), spec, e.message());
     if (key.empty()) throw;
     throw InputError(key + ": " + e.message());
   }

@@ -62,7 +62,39 @@ ScalarWaveData scalar_wave(const Mesh& mesh, const SceneSpec& s) {
   if (!d.obstacle_on_all_vertices) d.obstacle_parts = parts(mesh, s.obstacle.where, "obstacle.where");
   d.obstacle = s.obstacle.enabled;
   d.obstacle_g = s.obstacle.g.field;
+  d.obstacle_moves = s.obstacle.g.depends_on_time;
   return d;
+}
+
+// A rigid obstacle of the scene: a plane (moving when its point depends on t) or a
+// gap function.
+RigidObstacle rigid(const Mesh& mesh, const SceneSpec::Rigid& r) {
+  std::vector<int> where;
+  if (r.where == std::vector<std::string>{"boundary"}) {
+    for (std::size_t k = 0; k < mesh.part_names.size(); ++k) where.push_back(static_cast<int>(k));
+    where.push_back(-1);  // and the untagged boundary facets
+  } else {
+    where = parts(mesh, r.where, r.key + ".where");
+  }
+  RigidObstacle o;
+  if (r.gap) {
+    o.gap = r.gap->field;
+    o.moves = r.gap->depends_on_time;
+    o.contact_parts = where;
+  } else {
+    const Field px = r.point[0].field, py = r.point[1].field;
+    try {
+      if (r.point[0].depends_on_time || r.point[1].depends_on_time)
+        o = RigidObstacle::moving_plane([px, py](double t) { return Point{px(Point{}, t), py(Point{}, t)}; },
+                                        r.normal, where);
+      else
+        o = RigidObstacle::plane({px(Point{}, 0.0), py(Point{}, 0.0)}, r.normal, where);
+    } catch (const InputError& e) {
+      throw InputError(r.key + "." + e.parameter() + ": " + e.message());
+    }
+  }
+  o.name = r.name;
+  return o;
 }
 
 // Plane-strain elasticity with frictionless contact against a rigid plane
@@ -89,9 +121,7 @@ ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
   d.load_is_constant = !(s.physics.f[0].depends_on_time || s.physics.f[1].depends_on_time ||
                          s.neumann.traction[0].depends_on_time || s.neumann.traction[1].depends_on_time);
   d.obstacle = s.obstacle.enabled;
-  d.contact_parts = parts(mesh, s.obstacle.where, "obstacle.where");
-  d.obstacle_point = s.obstacle.point;
-  d.obstacle_normal = s.obstacle.normal;
+  for (const SceneSpec::Rigid& r : s.obstacle.rigid) d.obstacles.push_back(rigid(mesh, r));
   return d;
 }
 
@@ -138,11 +168,7 @@ void build_problem(Simulation& sim) {
   sim.dirichlet_parts = d.dirichlet_parts;
   sim.dirichlet_components = d.dirichlet_components;
   sim.components = 2;
-  sim.has_plane = d.obstacle;
-  sim.plane_point = d.obstacle_point;
-  const double norm = std::hypot(d.obstacle_normal.x, d.obstacle_normal.y);  // > 0: checked by the builder
-  sim.plane_normal = {d.obstacle_normal.x / norm, d.obstacle_normal.y / norm};
-  sim.contact_parts = d.contact_parts;
+  sim.has_obstacle = d.obstacle;
 }
 
 void add_probes(Simulation& sim) {

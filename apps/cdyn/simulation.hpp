@@ -40,14 +40,11 @@ struct Simulation {
   std::vector<int> dirichlet_components;   // elasticity's rollers (empty: all components fixed)
   std::vector<int> constrained_vertices;   // vertices carrying a constraint (sorted)
 
-  // Elasticity (physics.model = "elasticity"): two displacement components, and the
-  // rigid plane through `plane_point` with unit normal `plane_normal` pointing into the
-  // body's side (problems/elastic_contact.hpp); Γ_C is `contact_parts`.  The scalar models keep
-  // components = 1 and no plane.
+  // Elasticity (physics.model = "elasticity"): two displacement components and rigid
+  // obstacles (the problem's contact_nodes and obstacles, problems/elastic_contact.hpp).
+  // The scalar models keep components = 1 and no rigid obstacle.
   int components = 1;
-  bool has_plane = false;
-  Point plane_point, plane_normal;
-  std::vector<int> contact_parts;
+  bool has_obstacle = false;
 };
 
 // Builds and checks everything (bad input throws InputError naming the key).

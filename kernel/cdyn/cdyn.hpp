@@ -38,6 +38,7 @@
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/problems/nodal_rotation.hpp"
 #include "cdyn/problems/oscillator.hpp"
+#include "cdyn/problems/rigid_obstacle.hpp"
 #include "cdyn/problems/scalar_wave.hpp"
 // exact/
 #include "cdyn/exact/bar_exact.hpp"

@@ -531,7 +531,7 @@ TEST(ElasticContact, PostProcessingInTheMeshFrame) {
   ASSERT_TRUE(p.R.has_value());
   EXPECT_LE((force - *p.R * s.reaction).lpNorm<Eigen::Infinity>(), 0.0);
   const Point n = turn({0.0, 1.0}, kTheta);
-  const ContactPressure contact(p, d.contact_parts, d.obstacle_point, d.obstacle_normal);
+  const ContactPressure contact(p);
   const double weight = kGravity * mesh.measure();
   EXPECT_EQ(static_cast<int>(contact.vertices().size()), 5);  // the bottom side's 5 vertices
   EXPECT_NEAR(contact.total_force(force), weight, 1e-10 * weight);

@@ -1,61 +1,108 @@
-// contact_pressure.cpp — F_N, p and the gap at the vertices of Γ_C.
+// contact_pressure.cpp — F_N, p and the gap at the contact vertices; the penetration of
+// the whole boundary.
 #include "cdyn/post/contact_pressure.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
+#include "cdyn/base/error.hpp"
 #include "cdyn/post/contact_force.hpp"
 
 namespace cdyn {
 
-ContactPressure::ContactPressure(const ConstrainedProblem& p, const std::vector<int>& contact_parts, Point plane_point,
-                                 Point plane_normal)
-    : p_(p), point_(plane_point) {
-  // (the two-argument hypot in the plane, as the problem's builder normalizes n)
-  const double norm = plane_normal.z == 0.0 ? std::hypot(plane_normal.x, plane_normal.y)
-                                            : std::hypot(plane_normal.x, plane_normal.y, plane_normal.z);
-  n_ = {plane_normal.x / norm, plane_normal.y / norm, plane_normal.z / norm};
-  // w(a): half of each Γ_C edge to each of its two vertices.
+namespace {
+
+// φ(a + u(a), t)/scale: the distance of the displaced vertex to the obstacle.
+double distance(const ConstrainedProblem& p, const RigidObstacle& o, int vertex, double scale,
+                const Eigen::VectorXd& U_full, double t) {
+  const Point& a = p.W->mesh().vertices[vertex];
+  const FESpace& W = *p.W;
+  double x[3] = {a.x, a.y, a.z};
+  for (int k = 0; k < W.components(); ++k) x[k] += U_full[W.vertex_dof(vertex, k)];
+  return o.gap(Point{x[0], x[1], x[2]}, t) / scale;
+}
+
+}  // namespace
+
+ContactPressure::ContactPressure(const ConstrainedProblem& p) : p_(p) {
   const Mesh& mesh = p.W->mesh();
+  std::map<int, int> node_of;
+  for (int k = 0; k < static_cast<int>(p.contact_nodes.size()); ++k) node_of[p.contact_nodes[k].vertex] = k;
+  // w(a): half of each Γ_C edge to each of its two vertices (the edges of the parts of
+  // the vertex's obstacle).
   std::map<int, double> weight;
   for (const BoundaryFacet& f : mesh.boundary) {
-    if (std::find(contact_parts.begin(), contact_parts.end(), f.part) == contact_parts.end()) continue;
-    const Point &a = mesh.vertices[f.vertices[0]], &b = mesh.vertices[f.vertices[1]];
-    const double half = 0.5 * std::hypot(b.x - a.x, b.y - a.y);
+    const auto a = node_of.find(f.vertices[0]), b = node_of.find(f.vertices[1]);
+    if (a == node_of.end() || b == node_of.end()) continue;
+    const std::vector<int>& parts = p.obstacles[p.contact_nodes[a->second].obstacle].contact_parts;
+    if (std::find(parts.begin(), parts.end(), f.part) == parts.end()) continue;
+    const Point &pa = mesh.vertices[f.vertices[0]], &pb = mesh.vertices[f.vertices[1]];
+    const double half = 0.5 * std::hypot(pb.x - pa.x, pb.y - pa.y);
     weight[f.vertices[0]] += half;
     weight[f.vertices[1]] += half;
   }
   for (const auto& [v, w] : weight) {
     if (!is_constrained_vertex(p, v)) continue;
+    const ConstrainedProblem::ContactNode& c = p.contact_nodes[node_of.at(v)];
     const Point& a = mesh.vertices[v];
-    vertices_.push_back({v, -(a.x - point_.x) * n_.y + (a.y - point_.y) * n_.x, w});
+    const Point& o = p.obstacles[c.obstacle].origin;
+    vertices_.push_back({v, -(a.x - o.x) * c.normal.y + (a.y - o.y) * c.normal.x, w, node_of.at(v)});
   }
-  std::sort(vertices_.begin(), vertices_.end(), [](const Vertex& a, const Vertex& b) { return a.s < b.s; });
+  std::sort(vertices_.begin(), vertices_.end(), [this](const Vertex& a, const Vertex& b) {
+    const int oa = p_.contact_nodes[a.node].obstacle, ob = p_.contact_nodes[b.node].obstacle;
+    return oa != ob ? oa < ob : a.s < b.s;
+  });
 }
 
 double ContactPressure::normal_force(const Eigen::VectorXd& reaction_xy, const Vertex& a) const {
   const Point F = vertex_force(p_, reaction_xy, a.vertex);
-  return F.x * n_.x + F.y * n_.y + F.z * n_.z;
+  const Point& n = node(a).normal;
+  return F.x * n.x + F.y * n.y + F.z * n.z;
 }
 
 double ContactPressure::pressure(const Eigen::VectorXd& reaction_xy, const Vertex& a) const {
   return a.weight > 0.0 ? normal_force(reaction_xy, a) / a.weight : 0.0;
 }
 
-double ContactPressure::gap(const Eigen::VectorXd& U_full, const Vertex& a) const {
-  const Point& x = p_.W->mesh().vertices[a.vertex];
-  const FESpace& W = *p_.W;
-  const double xa[3] = {x.x, x.y, x.z}, pa[3] = {point_.x, point_.y, point_.z}, n[3] = {n_.x, n_.y, n_.z};
-  double g = 0.0;
-  for (int k = 0; k < W.components(); ++k) g += (xa[k] + U_full[W.vertex_dof(a.vertex, k)] - pa[k]) * n[k];
-  return g;
+double ContactPressure::gap(const Eigen::VectorXd& U_full, const Vertex& a, double t) const {
+  const ConstrainedProblem::ContactNode& c = node(a);
+  return distance(p_, p_.obstacles[c.obstacle], a.vertex, c.scale, U_full, t);
 }
 
 double ContactPressure::total_force(const Eigen::VectorXd& reaction_xy) const {
   double total = 0.0;
   for (const Vertex& a : vertices_) total += normal_force(reaction_xy, a);
   return total;
+}
+
+BoundaryPenetration::BoundaryPenetration(const ConstrainedProblem& p) : p_(p) {
+  const Mesh& mesh = p.W->mesh();
+  std::vector<int> all_parts{-1};
+  for (int k = 0; k < static_cast<int>(mesh.part_names.size()); ++k) all_parts.push_back(k);
+  vertices_ = mesh.part_vertices(all_parts);
+  const double h = 1e-6 * mesh.h_max();
+  for (const RigidObstacle& o : p.obstacles) {
+    std::vector<double> s;
+    for (int v : vertices_) {
+      double scale = 1.0;  // (where φ has no gradient, e.g. a cylinder's axis, φ itself)
+      try {
+        scale = obstacle_normal(o, mesh.vertices[v], h).scale;
+      } catch (const InputError&) {
+      }
+      s.push_back(scale);
+    }
+    scale_.push_back(std::move(s));
+  }
+}
+
+double BoundaryPenetration::operator()(const Eigen::VectorXd& U_full, double t) const {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < p_.obstacles.size(); ++k)
+    for (std::size_t j = 0; j < vertices_.size(); ++j)
+      worst = std::max(worst, -distance(p_, p_.obstacles[k], vertices_[j], scale_[k][j], U_full, t));
+  return worst;
 }
 
 }  // namespace cdyn

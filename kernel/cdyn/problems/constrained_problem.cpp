@@ -39,9 +39,27 @@ double ConstrainedProblem::potential_energy(const Eigen::VectorXd& Uf, double t)
   return 0.5 * U.dot(A_full * U) - full_load(t).dot(U);
 }
 
-double ConstrainedProblem::max_violation(const Eigen::VectorXd& Uf) const {
+void ConstrainedProblem::bounds(double t, Eigen::VectorXd& lower_t, Eigen::VectorXd& upper_t) const {
+  if (!moving_bounds) {
+    lower_t = lower;
+    upper_t = upper;
+    return;
+  }
+  lower_t = lower;  // (the unconstrained entries keep their ±inf)
+  upper_t = upper;
+  moving_bounds(t, lower_t, upper_t);
+}
+
+double ConstrainedProblem::max_violation(const Eigen::VectorXd& Uf, double t) const {
+  const Eigen::VectorXd* lo = &lower;
+  const Eigen::VectorXd* up = &upper;
+  Eigen::VectorXd lower_t, upper_t;
+  if (moving_bounds) {
+    bounds(t, lower_t, upper_t);
+    lo = &lower_t, up = &upper_t;
+  }
   double v = 0.0;
-  for (int i : constrained) v = std::max({v, lower[i] - Uf[i], Uf[i] - upper[i]});
+  for (int i : constrained) v = std::max({v, (*lo)[i] - Uf[i], Uf[i] - (*up)[i]});
   return v;
 }
 

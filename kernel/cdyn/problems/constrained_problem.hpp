@@ -29,6 +29,7 @@
 
 #include "cdyn/fe/dirichlet.hpp"
 #include "cdyn/mass/mass_model.hpp"
+#include "cdyn/problems/rigid_obstacle.hpp"
 
 namespace cdyn {
 
@@ -45,8 +46,24 @@ struct ConstrainedProblem {
 
   SparseMatrix A;                       // A_ff (Rᵀ A_ff R with a rotation)
   std::unique_ptr<MassModel> mass;      // M = Bᵀ C⁻¹ B on the free dofs (Rᵀ M R)
-  Eigen::VectorXd lower, upper;         // the constraint set K̄^h as bounds (±inf: none)
+  Eigen::VectorXd lower, upper;         // the constraint set K̄^h as bounds at t = 0 (±inf: none)
   std::vector<int> constrained;         // free dofs carrying a finite bound
+
+  // K̄^h(t) for an obstacle that moves (a datum g(x, t) of the bounds): writes the bounds
+  // at time t into lower, upper (sized n_free()).  Empty: the bounds are constant.
+  std::function<void(double t, Eigen::VectorXd& lower, Eigen::VectorXd& upper)> moving_bounds;
+
+  // The contact vertices of an elastic contact problem, each with the obstacle that
+  // constrains it, the obstacle's unit outward normal there and |∇φ| (so that
+  // φ(x, t)/scale is the distance to the obstacle near the vertex), and the obstacles
+  // (problems/rigid_obstacle.hpp).  Empty for the scalar problems.
+  struct ContactNode {
+    int vertex = -1, obstacle = 0;
+    Point normal;
+    double scale = 1.0;
+  };
+  std::vector<ContactNode> contact_nodes;
+  std::vector<RigidObstacle> obstacles;
 
   int n_free() const { return static_cast<int>(A.rows()); }
 
@@ -76,8 +93,13 @@ struct ConstrainedProblem {
   // ½ UᵀAU − LᵀU of the full field at time t.
   double potential_energy(const Eigen::VectorXd& Uf, double t) const;
 
-  // Largest violation max(lower − U, U − upper, 0) over the constrained dofs.
-  double max_violation(const Eigen::VectorXd& Uf) const;
+  bool bounds_are_constant() const { return !moving_bounds; }
+  // The bounds at time t (lower, upper themselves when they are constant).
+  void bounds(double t, Eigen::VectorXd& lower_t, Eigen::VectorXd& upper_t) const;
+
+  // Largest violation max(lower − U, U − upper, 0) over the constrained dofs, against
+  // the bounds at time t.
+  double max_violation(const Eigen::VectorXd& Uf, double t = 0.0) const;
 
  private:
   mutable double cached_t_ = 0.0;

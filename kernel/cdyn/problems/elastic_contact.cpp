@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/mass/rotated.hpp"
@@ -26,53 +27,86 @@ void check_material(const ElasticContactData& d) {
     throw InputError("lambda", "plane strain needs λ + μ > 0 (got λ = " + std::to_string(d.lambda) + ")");
 }
 
-// The constraint n·u(a) ≥ g(a) at the contact vertices, written as bounds on the
-// problem's unknowns (rotating the nodes that need it), and the contact dofs that
-// the redistributed mass makes massless.
-struct ContactSet {
-  NodalRotation rotation;           // nodes whose unknowns become (n·u, t·u)
-  std::vector<int> bound_index;     // free dof carrying each bound
-  std::vector<double> bound_value;  // its value
-  std::vector<bool> bound_is_lower; // lower (else upper) bound
-  std::vector<int> contact_dofs;    // both free components of every contact vertex
+// One bound of K̄^h: unknown `index` ≥ (or ≤) factor·g(a, t) + offset, with
+// g(a, t) = −φ(a, t)/|∇φ(a, 0)| the gap of the vertex's obstacle (a roller's fixed
+// component moves the offset).
+struct Bound {
+  int index = -1;
+  int node = -1;  // into ContactSet::nodes
+  double factor = 1.0, offset = 0.0;
+  bool lower = true;
 };
 
+// The constraints n(a)·u(a) ≥ g(a, t) at the contact vertices, written as bounds on the
+// problem's unknowns (rotating the nodes that need it), and the contact dofs that the
+// redistributed mass makes massless.
+struct ContactSet {
+  NodalRotation rotation;                             // nodes whose unknowns become (n·u, t·u)
+  std::vector<Bound> bounds;
+  std::vector<ConstrainedProblem::ContactNode> nodes; // every contact vertex
+  std::vector<int> contact_dofs;                      // both free components of every contact vertex
+};
+
+double node_gap(const std::vector<RigidObstacle>& obstacles, const Point& a,
+                const ConstrainedProblem::ContactNode& c, double t) {
+  return -obstacles[c.obstacle].gap(a, t) / c.scale;
+}
+
 ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& bc, const Eigen::VectorXd& UD,
-                       const ElasticContactData& d) {
-  const Point n = unit(d.obstacle_normal);
-  const double nk[2] = {n.x, n.y};
-  const bool axis_aligned = n.x == 0.0 || n.y == 0.0;
+                       const std::vector<RigidObstacle>& obstacles, bool rotate_always) {
+  // Each contact vertex goes to the obstacle it is nearest to at t = 0.
+  const double h = 1e-6 * mesh.h_max();
+  std::map<int, ConstrainedProblem::ContactNode> node_of;
+  for (int k = 0; k < static_cast<int>(obstacles.size()); ++k)
+    for (int v : mesh.part_vertices(obstacles[k].contact_parts)) {
+      const ObstacleNormal n = obstacle_normal(obstacles[k], mesh.vertices[v], h);
+      const ConstrainedProblem::ContactNode c{v, k, n.n, n.scale};
+      const auto it = node_of.find(v);
+      if (it == node_of.end() || node_gap(obstacles, mesh.vertices[v], c, 0.0) >
+                                     node_gap(obstacles, mesh.vertices[v], it->second, 0.0))
+        node_of[v] = c;  // (a larger g: the obstacle is nearer)
+    }
   ContactSet s;
-  auto bound = [&s](int i, double value, bool lower) {
-    s.bound_index.push_back(i);
-    s.bound_value.push_back(value);
-    s.bound_is_lower.push_back(lower);
-  };
-  for (int v : mesh.part_vertices(d.contact_parts)) {
+  for (const auto& [v, c] : node_of) {
+    const int node = static_cast<int>(s.nodes.size());
+    s.nodes.push_back(c);
+    const Point n = c.normal;
+    const double nk[2] = {n.x, n.y};
+    const bool axis_aligned = n.x == 0.0 || n.y == 0.0;
     const int i[2] = {bc.free_index(W.vertex_dof(v, 0)), bc.free_index(W.vertex_dof(v, 1))};
     for (int k : {0, 1})
       if (i[k] >= 0) s.contact_dofs.push_back(i[k]);
-    const double g = obstacle_gap(d, mesh.vertices[v]);
     if (i[0] >= 0 && i[1] >= 0) {
-      if (!axis_aligned || d.rotate_always) {
+      if (!axis_aligned || rotate_always) {
         // Unknown i[0] becomes n·u (and i[1] t·u): n·u ≥ g is a lower bound on it.
         s.rotation.nodes.push_back({i[0], i[1], n.x, n.y});
-        bound(i[0], g, true);
+        s.bounds.push_back({i[0], node, 1.0, 0.0, true});
       } else {
         // n = ±e_k: ±u_k ≥ g.
         const int k = n.x != 0.0 ? 0 : 1;
-        bound(i[k], nk[k] > 0 ? g : -g, nk[k] > 0);
+        s.bounds.push_back({i[k], node, nk[k] > 0 ? 1.0 : -1.0, 0.0, nk[k] > 0});
       }
     } else if (i[0] >= 0 || i[1] >= 0) {
       // A roller: u_j = u_D,j is data, n_k u_k ≥ g − n_j u_D,j bounds the free u_k.
       const int k = i[0] >= 0 ? 0 : 1, j = 1 - k;
       if (nk[k] == 0.0) continue;  // the constraint does not involve the free unknown
-      const double value = (g - nk[j] * UD[W.vertex_dof(v, j)]) / nk[k];
-      bound(i[k], value, nk[k] > 0);
+      s.bounds.push_back({i[k], node, 1.0 / nk[k], -nk[j] * UD[W.vertex_dof(v, j)] / nk[k], nk[k] > 0});
     }
     // Both components fixed: a Dirichlet vertex is not constrained.
   }
   return s;
+}
+
+// Writes the bounds of K̄^h(t) into lower, upper.
+void write_bounds(const Mesh& mesh, const std::vector<RigidObstacle>& obstacles, const ContactSet& set, double t,
+                  Eigen::VectorXd& lower, Eigen::VectorXd& upper) {
+  for (const Bound& b : set.bounds) {
+    const ConstrainedProblem::ContactNode& c = set.nodes[b.node];
+    const double g = node_gap(obstacles, mesh.vertices[c.vertex], c, t);
+    // (g alone when factor = 1, offset = 0: the plane's −(a − p)·n to the last bit)
+    const double value = b.factor == 1.0 && b.offset == 0.0 ? g : b.factor * g + b.offset;
+    (b.lower ? lower : upper)[b.index] = value;
+  }
 }
 
 }  // namespace
@@ -88,10 +122,19 @@ double obstacle_gap(const ElasticContactData& d, const Point& a) {
   return -((a.x - d.obstacle_point.x) * n.x + (a.y - d.obstacle_point.y) * n.y);
 }
 
+std::vector<RigidObstacle> obstacles_of(const ElasticContactData& d) {
+  if (!d.obstacles.empty()) return d.obstacles;
+  if (d.contact_parts.empty()) return {};
+  return {RigidObstacle::plane(d.obstacle_point, d.obstacle_normal, d.contact_parts)};
+}
+
 ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& d) {
   if (mesh.dim != 2) throw InputError("mesh", "plane-strain elasticity needs a 2D mesh");
   check_material(d);
-  if (d.obstacle && d.contact_parts.empty()) throw InputError("contact", "elasticity with an obstacle needs a contact part Γ_C");
+  const std::vector<RigidObstacle> obstacles = obstacles_of(d);
+  if (d.obstacle && obstacles.empty()) throw InputError("contact", "elasticity with an obstacle needs a contact part Γ_C");
+  for (const RigidObstacle& o : obstacles)
+    if (o.contact_parts.empty()) throw InputError("contact", o.name + ": no contact part Γ_C");
   ConstrainedProblem p;
   p.W = std::make_unique<FESpace>(mesh, d.mass.W, 2);
   const FESpace& W = *p.W;
@@ -115,16 +158,22 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   // K̄^h.  The contact set (and the rotation) is built even when the obstacle is
   // disabled: the redistributed mass depends on it, and the unconstrained run must
   // keep the same M and the same unknowns.
-  const ContactSet contact = contact_set(mesh, W, *p.bc, p.UD, d);
+  const ContactSet contact = contact_set(mesh, W, *p.bc, p.UD, obstacles, d.rotate_always);
   const double inf = std::numeric_limits<double>::infinity();
   p.lower = Eigen::VectorXd::Constant(A_ff.rows(), -inf);
   p.upper = Eigen::VectorXd::Constant(A_ff.rows(), inf);
-  if (d.obstacle)
-    for (std::size_t b = 0; b < contact.bound_index.size(); ++b) {
-      const int i = contact.bound_index[b];
-      (contact.bound_is_lower[b] ? p.lower : p.upper)[i] = contact.bound_value[b];
-      p.constrained.push_back(i);
-    }
+  p.contact_nodes = contact.nodes;
+  p.obstacles = obstacles;
+  if (d.obstacle) {
+    write_bounds(mesh, obstacles, contact, 0.0, p.lower, p.upper);
+    for (const Bound& b : contact.bounds) p.constrained.push_back(b.index);
+    bool moves = false;
+    for (const RigidObstacle& o : obstacles) moves = moves || o.moves;
+    if (moves)
+      p.moving_bounds = [&mesh, obstacles, contact](double t, Eigen::VectorXd& lower, Eigen::VectorXd& upper) {
+        write_bounds(mesh, obstacles, contact, t, lower, upper);
+      };
+  }
 
   // Redistributed mass: both components of each contact node are massless, so every
   // normal N_i is in Ker M whatever its direction (mass/mass_model.hpp).

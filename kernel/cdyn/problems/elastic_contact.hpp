@@ -3,11 +3,18 @@
 //
 //     ρ ü − div σ(u) = f  in Ω,     σ(u) = λ tr ε(u) I + 2μ ε(u)       (1), (2)
 //     σ(u) ν = g_N on Γ_N,   u = u_D on Γ_D,   u(0) = u₀, u̇(0) = u₁     (3)–(5)
-//     nodal Signorini contact on Γ_C against a rigid plane             (6)
+//     nodal Signorini contact on Γ_C against rigid obstacles            (6)
 //
 // Weak form: A_ij = ∫ λ div φ_i div φ_j + 2μ ε(φ_i):ε(φ_j) (assemble_elasticity),
 // L_i = ∫_Ω f·φ_i + ∫_{Γ_N} g_N·φ_i (assemble_load, assemble_boundary_load); the inertia
 // is the chosen pair's M = ρ Bᵀ C⁻¹ B or a classical mass model (mass/mass_model.hpp).
+//
+// Rigid obstacles (problems/rigid_obstacle.hpp): planes, or surfaces given by a gap
+// function φ(x, t) whose normal comes from its gradient, each with its own contact parts.
+// A contact vertex on the parts of several obstacles is constrained by the one it is
+// nearest to at t = 0 (one bound per vertex: the node-local rotation turns one normal).
+// An obstacle whose φ depends on t moves: the bounds are then K̄^h(t)
+// (ConstrainedProblem::moving_bounds), the normals those of t = 0.
 //
 // The rigid plane (convention, docs/elasticity.md).  The plane passes through the point
 // p and n is its unit normal pointing from the obstacle INTO the body's side (the
@@ -31,8 +38,9 @@
 #include <string>
 #include <vector>
 
-#include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/mesh/mesh.hpp"
+#include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/problems/rigid_obstacle.hpp"
 
 namespace cdyn {
 
@@ -53,7 +61,10 @@ struct ElasticContactData {
   std::vector<int> neumann_parts;                  // Γ_N (free parts with a traction)
   std::array<Field, 2> traction{zero_field, zero_field};  // g_N = σ ν on Γ_N
 
-  std::vector<int> contact_parts;  // Γ_C
+  // The obstacles.  Empty: the single plane through obstacle_point with normal
+  // obstacle_normal, touched by contact_parts (the shorthand of the first scenes).
+  std::vector<RigidObstacle> obstacles;
+  std::vector<int> contact_parts;  // Γ_C of the single plane
   Point obstacle_point{0.0, 0.0};  // p, a point of the rigid plane
   Point obstacle_normal{0.0, 1.0}; // n, towards the body (normalized by the builder)
   bool obstacle = true;            // false: the same problem (same M, same unknowns) with no constraint
@@ -68,11 +79,15 @@ struct Lame {
 };
 Lame lame_parameters(double E, double nu);
 
-// g(a) = −(a − p)·n: the lower bound of n·u(a) (n normalized).
+// g(a) = −(a − p)·n: the lower bound of n·u(a) (n normalized) for the single plane.
 double obstacle_gap(const ElasticContactData& data, const Point& a);
 
+// The obstacles of the data: `obstacles`, or the single plane when it is empty.
+std::vector<RigidObstacle> obstacles_of(const ElasticContactData& data);
+
 // Throws InputError for ρ ≤ 0, μ ≤ 0, λ + μ ≤ 0 (plane-strain ellipticity), a zero
-// normal, a non-2D mesh, or an obstacle with no contact part.
+// normal, a non-2D mesh, an obstacle with no contact part, or a gap function without a
+// gradient at a contact vertex.
 ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& data);
 
 }  // namespace cdyn

@@ -33,7 +33,7 @@ ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) 
   } else {
     vertices = mesh.part_vertices(d.obstacle_parts);
   }
-  std::vector<int> contact;
+  std::vector<int> contact, constrained_vertex;
   for (int v : vertices) {
     const int i = p.bc->free_index(W.vertex_dof(v));
     if (i < 0) continue;  // a Dirichlet vertex is not constrained
@@ -42,6 +42,15 @@ ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) 
     const Point& a = mesh.vertices[v];
     p.lower[i] = d.obstacle_g(a.x, a.y, 0.0);
     p.constrained.push_back(i);
+    constrained_vertex.push_back(v);
+  }
+  if (d.obstacle && d.obstacle_moves) {
+    // K̄^h(t): u(a_i) ≥ g(a_i, t), at the time level each scheme constrains.
+    const std::vector<int> index = p.constrained;
+    const Field g = d.obstacle_g;
+    p.moving_bounds = [&mesh, index, constrained_vertex, g](double t, Eigen::VectorXd& lower, Eigen::VectorXd&) {
+      for (std::size_t k = 0; k < index.size(); ++k) lower[index[k]] = g(mesh.vertices[constrained_vertex[k]], t);
+    };
   }
   p.mass = make_mass_model(W, *p.bc, d.mass, d.rho, contact);
   return p;

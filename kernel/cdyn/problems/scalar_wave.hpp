@@ -28,7 +28,8 @@ struct ScalarWaveData {
   bool obstacle = true;            // false: the same problem with no constraint
   bool obstacle_on_all_vertices = true;   // the membrane's volume obstacle
   std::vector<int> obstacle_parts;        // otherwise: the vertices of these parts (Γ_C)
-  Field obstacle_g;                // lower bound u ≥ g (evaluated at t = 0)
+  Field obstacle_g;                // lower bound u ≥ g(x, t)
+  bool obstacle_moves = false;     // g depends on t: the bounds K̄^h(t) are updated every step
 };
 
 ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& data);

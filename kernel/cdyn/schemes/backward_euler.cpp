@@ -20,6 +20,7 @@ class BackwardEuler final : public StepQPScheme {
   StepStats step(State& s) override {
     const double c = 1.0 / dt_;
     StepStats stats;
+    constrain_at(s.t + dt_);  // U^{n+1} ∈ K̄^h(t^{n+1})
     const Eigen::VectorXd r = inertia(c * c, s.U, c, s.V) + p_.load(s.t + dt_);  // c² M Uⁿ + c Bᵀ Vⁿ + L
     const Eigen::VectorXd U1 = solve(r, s, stats);
     s.V = p_.mass->velocity(c * (U1 - s.U));

@@ -38,6 +38,18 @@
 // the switch is resolved by a few substeps and J stays exact.  The substep matrix
 // 4M/h² + A is factorized while the substeps last.  Below dt/2¹⁰ the step is refused
 // with a NumericalError, never continued with an energy error.
+//
+// Data that depend on t (a load L(t), an obstacle that moves: K̄^h(t)) make Ψ = Ψ(q, t)
+// and H is no longer conserved: dH/dt = ∂ₜΨ, the power of the load and of the obstacle.
+// By the envelope theorem (Ψ is a minimum over W) ∂ₜΨ = −L'(t)·W + λ·∂ₜg at the
+// minimizer, with λ the reaction and g the active bound; the step takes it at the
+// midpoint, where the QP has both, with the data's increments over the step:
+//     Δ_tΨ = −(L(t^{n+1}) − L(tⁿ))·U^{n+½} + λ·(g(t^{n+1}) − g(tⁿ)),
+// and the discrete gradient asks ∇̄Ψ·Δq = Ψ(q^{n+1}, t^{n+1}) − Ψ(qⁿ, tⁿ) − Δ_tΨ, so
+// that H^{n+1} − Hⁿ = Δ_tΨ exactly, the discrete work of the data on the body
+// (StepStats::external_work): a second-order quadrature of ∫ ∂ₜΨ dt, exact when L and g
+// are affine in t and the active set does not change (then β = 0 and the step is plain
+// midpoint, as without data in t).
 #include <cmath>
 #include <optional>
 
@@ -50,6 +62,42 @@ namespace cdyn {
 
 namespace {
 
+// The increments of the data over a step: L(t^{n+1}) − L(tⁿ) on all dofs and
+// g(t^{n+1}) − g(tⁿ) of the lower and upper bounds (0 where a bound is infinite).
+struct DataIncrement {
+  Eigen::VectorXd dL, dlower, dupper;
+
+  // Δ_tΨ = −ΔL·U^{n+½} + λ·Δg, g the bound λ pushes against (λ > 0: lower, λ < 0: upper)
+  double work(const ConstrainedProblem& p, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction) const {
+    double w = dL.size() ? -dL.dot(p.full(X)) : 0.0;
+    for (Eigen::Index i = 0; i < reaction.size() && dlower.size(); ++i)
+      w += reaction[i] * (reaction[i] > 0 ? dlower[i] : dupper[i]);
+    return w;
+  }
+};
+
+DataIncrement data_increment(const ConstrainedProblem& p, double t0, double t1) {
+  DataIncrement d;
+  if (!p.load_is_constant) {
+    d.dL = p.full_load(t1);  // (a copy: full_load returns its one-time cache)
+    d.dL -= p.full_load(t0);
+  }
+  if (!p.bounds_are_constant()) {
+    Eigen::VectorXd lo0, up0, lo1, up1;
+    p.bounds(t0, lo0, up0);
+    p.bounds(t1, lo1, up1);
+    auto increment = [](const Eigen::VectorXd& a1, const Eigen::VectorXd& a0) {
+      Eigen::VectorXd d = a1 - a0;
+      for (Eigen::Index i = 0; i < d.size(); ++i)
+        if (!std::isfinite(d[i])) d[i] = 0.0;
+      return d;
+    };
+    d.dlower = increment(lo1, lo0);
+    d.dupper = increment(up1, up0);
+  }
+  return d;
+}
+
 class DiscreteGradient final : public StepQPScheme {
  public:
   DiscreteGradient(const ConstrainedProblem& p, StepSolver& solver, double dt, const SchemeParameters& parameters,
@@ -57,7 +105,8 @@ class DiscreteGradient final : public StepQPScheme {
       : StepQPScheme(p, solver, dt, 1.0, 4.0, parameters.condense),
         full_step_(std::move(full_step)),
         energy_tol_(parameters.energy_tol),
-        tol_(parameters.tol) {}
+        tol_(parameters.tol),
+        autonomous_(p.load_is_constant && p.bounds_are_constant()) {}
   std::string name() const override { return "discrete_gradient"; }
   FullSteps full_steps() const override { return FullSteps::Reconstructed; }
 
@@ -92,14 +141,18 @@ class DiscreteGradient final : public StepQPScheme {
   bool try_step(State& s, double h, StepStats& stats) {
     const double c = 1.0 / h;
     set_mass_factor(4.0 * (dt_ / h) * (dt_ / h));  // S = 4M/h² + A
+    constrain_at(s.t + 0.5 * h);                     // U^{n+½} ∈ K̄^h(t^{n+½})
     const Eigen::VectorXd r0 = inertia(4 * c * c, s.U, 2 * c, s.V) + p_.load(s.t + 0.5 * h);
     const Eigen::VectorXd BtV = p_.mass->momentum(s.V);
     const double kinetic = p_.mass->kinetic_energy(s.V);
+    const double t0 = s.t, t1 = s.t + h;
+    DataIncrement data;
+    if (!autonomous_) data = data_increment(p_, t0, t1);
     State trial_state = s;
 
     // One iteration: the QP with the correction −2β M (X_prev − Uⁿ) on the right.
     struct Iterate {
-      double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0;
+      double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0;
       Eigen::VectorXd X, U1, W1, reaction;
     };
     auto iterate = [&](double beta, const Eigen::VectorXd* X_prev) {
@@ -115,16 +168,18 @@ class DiscreteGradient final : public StepQPScheme {
       const Eigen::VectorXd D = it.X - s.U;
       it.U1 = 2.0 * it.X - s.U;
       double kkt = 0.0;
-      it.W1 = full_step_(it.U1, s.t + h, &kkt);
+      it.W1 = full_step_(it.U1, t1, &kkt);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);
-      it.psi1 = p_.potential_energy(it.W1, s.t + h);
+      it.psi1 = p_.potential_energy(it.W1, t1);
+      it.reaction = trial_state.reaction;
+      if (!autonomous_) it.work = data.work(p_, it.X, it.reaction);
       it.reaction = trial_state.reaction;
       const double DMD = D.dot(mass_times(D));
       it.dq2 = 4 * DMD;  // |Δq|²_C = ΔUᵀ M ΔU
       const double pull = 4 * c * BtV.dot(D);
-      it.dH = 8 * c * c * DMD - pull + it.psi1 - psi_;
+      it.dH = 8 * c * c * DMD - pull + it.psi1 - psi_ - it.work;  // H^{n+1} − Hⁿ − Δ_tΨ
       // the size of what ΔH cancels: its round-off is a few ε of this
-      it.terms = kinetic + 8 * c * c * DMD + std::abs(pull) + std::abs(it.psi1) + std::abs(psi_);
+      it.terms = kinetic + 8 * c * c * DMD + std::abs(pull) + std::abs(it.psi1) + std::abs(psi_) + std::abs(it.work);
       return it;
     };
     auto small_energy = [&](const Iterate& it) { return std::abs(it.dH) <= energy_tol_ * it.terms; };
@@ -152,6 +207,7 @@ class DiscreteGradient final : public StepQPScheme {
     s.reaction = std::move(a.reaction);
     s.t += h;
     psi_ = a.psi1;
+    stats.external_work += a.work;
     return true;
   }
 
@@ -159,6 +215,7 @@ class DiscreteGradient final : public StepQPScheme {
   static constexpr int kMaxHalvings = 10;
   FullStepReconstruction full_step_;
   double energy_tol_, tol_;
+  bool autonomous_;  // neither L nor K̄^h depends on t: Ψ = Ψ(q), H conserved
   bool initialized_ = false;
   double psi_ = 0.0;  // Ψ(qⁿ): the potential energy of the reconstructed Uⁿ
 };

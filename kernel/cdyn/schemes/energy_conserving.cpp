@@ -79,6 +79,11 @@ std::unique_ptr<TimeScheme> make_energy_conserving(const ConstrainedProblem& p, 
   // A massless mode z ∈ Ker M obeys zᵀA (U^{n+1} + 2Uⁿ + U^{n−1})/4 = zᵀL: the double
   // root −1 of x² + 2x + 1 lets it grow like (−1)ⁿ n (measured: P1+/P0 and P2/P1 on the
   // membrane sink by 0.3 in 800 steps).  So M must be invertible.
+  // Its contact condition is written on the velocity relative to a fixed obstacle
+  // (G Vⁿ ≤ 0); a moving one would need the obstacle's velocity in it.
+  if (!p.bounds_are_constant())
+    throw InputError("scheme", "energy_conserving takes fixed obstacles only (its contact condition is G V ≤ 0); "
+                               "use discrete_gradient or midpoint with a moving obstacle");
   if (!p.mass->is_invertible())
     throw InputError("scheme", "energy_conserving needs an invertible mass matrix (its massless modes are unstable): "
                                "the consistent or lumped mass, or a pair with Ker B = {0} such as P1/P1 — not " +

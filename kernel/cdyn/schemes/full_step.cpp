@@ -58,10 +58,17 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
   }
   const SparseMatrix& Z = modes_.Z;
   qp_.r = Z.transpose() * (p_.load(t) - p_.A * U);
+  const Eigen::VectorXd* lower = &p_.lower;
+  const Eigen::VectorXd* upper = &p_.upper;
+  Eigen::VectorXd lower_t, upper_t;
+  if (!p_.bounds_are_constant()) {  // K̄^h(t) of a moving obstacle
+    p_.bounds(t, lower_t, upper_t);
+    lower = &lower_t, upper = &upper_t;
+  }
   for (std::size_t k = 0; k < modes_.pinned.size(); ++k) {
     const int i = modes_.pinned[k];
-    qp_.lower[k] = p_.lower[i] - U[i];
-    qp_.upper[k] = p_.upper[i] - U[i];
+    qp_.lower[k] = (*lower)[i] - U[i];
+    qp_.upper[k] = (*upper)[i] - U[i];
   }
   last_ = solver_->solve(qp_, has_last_ ? &last_ : nullptr);
   has_last_ = true;

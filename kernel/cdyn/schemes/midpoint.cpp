@@ -49,6 +49,7 @@ class Midpoint final : public StepQPScheme {
   StepStats step(State& s) override {
     if (!initialized_) initialize(s);
     const double c = 1.0 / dt_;
+    constrain_at(at_end_ ? s.t + dt_ : s.t + 0.5 * dt_);  // the constrained unknown's time level
     const Eigen::VectorXd& L = p_.load(s.t + 0.5 * dt_);
     StepStats stats;
     Eigen::VectorXd U1;

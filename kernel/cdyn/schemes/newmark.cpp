@@ -31,6 +31,7 @@ class Newmark final : public StepQPScheme {
     // V̇⁰ from (N3) at t = 0 with λ⁰ = 0: Bᵀ V̇⁰ = L⁰ − A U⁰.
     if (Vdot_.size() == 0) Vdot_ = p_.mass->acceleration(p_.load(s.t) - p_.A * s.U);
     StepStats stats;
+    constrain_at(s.t + dt_);  // U^{n+1} ∈ K̄^h(t^{n+1})
     const Eigen::VectorXd r =  // (c²/β) M Uⁿ + Bᵀ((c/β) Vⁿ + ((½ − β)/β) V̇ⁿ) + L
         inertia(c * c / b, s.U, 1.0, (c / b) * s.V + ((0.5 - b) / b) * Vdot_) + p_.load(s.t + dt_);
     const Eigen::VectorXd U1 = solve(r, s, stats);

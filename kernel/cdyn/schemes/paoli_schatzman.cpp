@@ -35,7 +35,8 @@ class PaoliSchatzman final : public StepQPScheme {
     if (U_prev_.size() == 0) U_prev_ = s.U - dt_ * s.V + 0.5 * dt_ * dt_ * p_.mass->acceleration(F);
     const Eigen::VectorXd r = (c * c * mass_times(2.0 * s.U - (1.0 - e_) * U_prev_) + F) / (1.0 + e_);
     StepStats stats;
-    const Eigen::VectorXd X = diagonal_.size() ? clamp(r, s, stats) : solve(r, s, stats);
+    constrain_at(s.t + dt_);  // the projection on K̄^h(t^{n+1})
+    const Eigen::VectorXd X = diagonal_.size() ? clamp(r, s.t + dt_, s, stats) : solve(r, s, stats);
     const Eigen::VectorXd U1 = (1.0 + e_) * X - e_ * U_prev_;
     U_prev_ = s.U;
     s.V = c * (U1 - s.U);
@@ -53,13 +54,16 @@ class PaoliSchatzman final : public StepQPScheme {
   }
 
  private:
-  // The M-projection on a box for a diagonal M: X = clamp(Y), Y = r/(diag(M) c²).
-  Eigen::VectorXd clamp(const Eigen::VectorXd& r, State& s, StepStats& stats) const {
+  // The M-projection on a box for a diagonal M: X = clamp(Y), Y = r/(diag(M) c²), on
+  // the bounds at time t.
+  Eigen::VectorXd clamp(const Eigen::VectorXd& r, double t, State& s, StepStats& stats) const {
     const Eigen::VectorXd D = diagonal_ / (dt_ * dt_);
-    const Eigen::VectorXd X = (r.cwiseQuotient(D)).cwiseMax(p_.lower).cwiseMin(p_.upper);
+    Eigen::VectorXd lower, upper;
+    p_.bounds(t, lower, upper);
+    const Eigen::VectorXd X = (r.cwiseQuotient(D)).cwiseMax(lower).cwiseMin(upper);
     s.reaction = D.cwiseProduct(X) - r;  // S X − r = Gᵀλ
     for (int i : p_.constrained)
-      if (X[i] == p_.lower[i] || X[i] == p_.upper[i]) ++stats.active;
+      if (X[i] == lower[i] || X[i] == upper[i]) ++stats.active;
     return X;
   }
 

@@ -83,6 +83,13 @@ void StepQPScheme::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorX
   qp_.upper = upper;
 }
 
+void StepQPScheme::constrain_at(double t) {
+  if (p_.bounds_are_constant()) return;
+  Eigen::VectorXd lower, upper;
+  p_.bounds(t, lower, upper);
+  set_bounds(lower, upper);
+}
+
 Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStats& stats) {
   qp_.r = condensation_ ? condensation_->reduce(r) : r;  // r_c = r_v − S_vb S_bb⁻¹ r_b
   last_ = solver_.solve(qp_, has_last_ ? &last_ : nullptr);

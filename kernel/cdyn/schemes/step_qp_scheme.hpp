@@ -47,6 +47,10 @@ class StepQPScheme : public TimeScheme {
   // bound on a condensed unknown ends the condensation for the rest of the run.
   void set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
 
+  // The step QP's bounds made K̄^h(t) of a moving obstacle (nothing to do when the
+  // problem's bounds are constant): t is the time level the scheme constrains.
+  void constrain_at(double t);
+
   // The explicit M when the mass model has one (H^h = P0, classical models), or C when B = C.
   const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
 

@@ -40,6 +40,9 @@ struct StepStats {
   double reconstruction_kkt = 0.0;
   int energy_iterations = 0;  // discrete_gradient: step QPs solved (1 without a switch)
   int substeps = 0;           // discrete_gradient: halvings of dt at a stiff switch
+  // discrete_gradient with data in t (a load L(t), a moving obstacle): the step's
+  // H^{n+1} − Hⁿ, the discrete work of the data on the body (0 when nothing depends on t).
+  double external_work = 0.0;
 };
 
 // How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):

@@ -67,19 +67,21 @@ WellPosedness condition12_dense(const SparseMatrix& B, const SparseMatrix& G, in
 }
 
 SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc, const std::vector<int>& vertices,
-                                      std::optional<Point> normal) {
+                                      std::optional<Point> normal, const std::vector<Point>& normals) {
   if (!W.has_vertex_dofs()) throw InputError("pair", "the displacement space must be continuous");
-  if (W.components() > 1 && !normal)
+  if (W.components() > 1 && !normal && normals.size() != vertices.size())
     throw InputError("constraints: a vector-valued space needs the contact normal");
   std::vector<Eigen::Triplet<double>> t;
   int row = 0;
-  for (int v : vertices) {
+  for (std::size_t j = 0; j < vertices.size(); ++j) {
+    const int v = vertices[j];
+    const Point n = normals.empty() ? (normal ? *normal : Point{}) : normals[j];
     if (v < 0 || v >= W.mesh().n_vertices()) throw InputError("constraints: no vertex " + std::to_string(v));
     bool any = false;
     for (int k = 0; k < W.components(); ++k) {
       const int f = bc.free_index(W.vertex_dof(v, k));
       if (f < 0) continue;
-      const double c = W.components() == 1 ? -1.0 : (k == 0 ? normal->x : normal->y);
+      const double c = W.components() == 1 ? -1.0 : (k == 0 ? n.x : n.y);
       if (c != 0.0) {
         t.emplace_back(row, f, c);
         any = true;
@@ -96,7 +98,7 @@ SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc,
 WellPosedness condition12_on(const Mesh& mesh, const MassSpec& spec, const WellPosednessSetup& setup) {
   const FESpace W(mesh, spec.W, setup.components);
   const DirichletLift bc(W, setup.dirichlet_parts);
-  const SparseMatrix G = vertex_constraint_matrix(W, bc, setup.constrained_vertices, setup.normal);
+  const SparseMatrix G = vertex_constraint_matrix(W, bc, setup.constrained_vertices, setup.normal, setup.normals);
 
   SparseMatrix B;
   if (!spec.is_pair()) {

@@ -92,9 +92,11 @@ WellPosedness condition12_dense(const SparseMatrix& B, const SparseMatrix& G,
 // G for constraints at vertices (one row each, fixed vertices skipped: a Dirichlet
 // vertex is not an unknown): scalar W^h: row −e_v (the obstacle u(a_v) ≥ g, seed eq. 16);
 // vector W^h: row n_x e_{v,x} + n_y e_{v,y} (the normal displacement u·n ≤ gap), which
-// needs `normal`.  Columns are the free dofs of `bc`.
+// needs `normal` (one for all) or `normals` (one per vertex, e.g. a curved obstacle's).
+// Columns are the free dofs of `bc`.
 SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc, const std::vector<int>& vertices,
-                                      std::optional<Point> normal = std::nullopt);
+                                      std::optional<Point> normal = std::nullopt,
+                                      const std::vector<Point>& normals = {});
 
 // What condition (12) needs besides the mesh and the pair.
 struct WellPosednessSetup {
@@ -102,6 +104,7 @@ struct WellPosednessSetup {
   std::vector<int> constrained_vertices;  // where the constraint acts (fixed ones skipped)
   int components = 1;                     // 2: plane elasticity
   std::optional<Point> normal;            // components = 2: the constraint direction
+  std::vector<Point> normals;             // ... or one per constrained vertex
   Condition12Method method = Condition12Method::automatic;
   int dense_limit = kWellposednessDenseLimit;  // for method = dense
 };
