@@ -3,8 +3,9 @@
 # package so that an outside project writes
 #     find_package(cdyn 0.1 REQUIRED)
 #     target_link_libraries(app PRIVATE cdyn::cdyn cdyn::meshing cdyn::io)
-# The command-line front end (cdyn_frontend) and the `cdyn` program are not part of the
-# library API and are not installed here.
+# and the `cdyn` program into bin/ (its default scene and plot scripts are compiled in,
+# so it runs without the source tree).  The command-line front end's library
+# (cdyn_frontend) is not part of the library API and is not installed.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -26,3 +27,8 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/cdynConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/cdynConfig.cmake ${PROJECT_BINARY_DIR}/cdynConfigVersion.cmake
         DESTINATION ${CDYN_INSTALL_CMAKEDIR})
+
+# The `cdyn` program: apps/ is added after this file (the libraries' install rules come
+# first), so the rule is deferred to the end of the top directory, when it exists.
+cmake_language(DEFER DIRECTORY ${PROJECT_SOURCE_DIR}
+               CALL install TARGETS cdyn_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -5,25 +5,34 @@ Usage: python3 scripts/plot_run.py RUN_DIR
 
 Writes RUN_DIR/plots/:
   energy.png   E_kin, E_pot and E_total = J against t (seed, Theorem 2), and below
-               the relative drift (J - J0)/|J0|, where conservation shows (or not);
+               the drift (J - J0)/E_scale (summary.json's E_scale: |J0|, or for a run
+               from rest the energy it exchanges), where conservation shows (or not);
   probes.png   u@P and lambda@P against t for every probe P (when the scene has any);
   contact.png  the number of active constraints per step and, at the probes, the
                contact force -lambda@P (lambda <= 0 is the seed's multiplier);
   contact_pressure.png  (elasticity runs, from contact.csv) the contact pressure along
                Gamma_C over time: a space-time image and the profiles at a few times,
                where the spurious oscillations of a standard mass show against the
-               smooth pressure of the well-posed methods.
-docs/outputs.md describes the columns.  `cdyn run` runs a copy of this file compiled
+               smooth pressure of the well-posed methods; limited to the time window
+               of the contact.
+The axes carry the scene's units (its `units` key, in summary.json); the legends sit
+outside the axes, where they cover no curve.  docs/outputs.md describes the columns.  `cdyn run` runs a copy of this file compiled
 into the binary (apps/CMakeLists.txt), so edits here take effect at the next build;
 running it by hand remakes the plots of an existing run.
 
 Exit status 3 when matplotlib cannot be imported (cdyn then tries another python3, or
-prints a note): plots are optional, never an error of the run.
+prints a note): plots are optional, never an error of the run.  Ctrl-C ends it quietly
+with status 130 (no traceback, no half-written image: each is written under a
+temporary name and renamed).
 """
 import csv
 import json
 import os
+import signal
 import sys
+
+# Ctrl-C (the terminal signals cdyn and this script together): quietly, at once.
+signal.signal(signal.SIGINT, lambda signum, frame: sys.exit(130))
 
 try:
     import matplotlib
@@ -47,24 +56,47 @@ def title(summary):
     return "{scene}: {pair}, {scheme}, dt = {dt:g}, {n_dofs} dofs".format(**summary)
 
 
-def plot_energy(h, summary, path):
-    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6), gridspec_kw={"height_ratios": [2, 1]})
+def unit(summary, quantity):
+    """ " [unit]" of a quantity in the scene's units (summary.json "units": length, force,
+    time), "" without them.  Plane-strain elasticity gives energies and forces per unit
+    thickness (N·mm/mm, N/mm); the scalar models' are the model's own (F·L, F)."""
+    u = summary.get("units")
+    if not u:
+        return ""
+    L, F, T = u["length"], u["force"], u["time"]
+    per = "/" + L if summary.get("model") == "elasticity" else ""
+    text = {"length": L, "time": T, "energy": F + "·" + L + per, "force": F + per, "pressure": F + "/" + L + "²",
+            "velocity": L + "/" + T}[quantity]
+    return " [" + text + "]"
+
+
+def legend(ax):
+    """A legend outside the axes, on the right: it covers no curve."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
+
+
+def plot_energy(h, summary):
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8.5, 6), gridspec_kw={"height_ratios": [2, 1]})
     t = h["t"]
     top.plot(t, h["E_kin"], label="E_kin = ½VᵀCV")
     top.plot(t, h["E_pot"], label="E_pot = ½UᵀAU − LᵀU")
     top.plot(t, h["E_total"], "k", label="E_total = J")
-    top.set_ylabel("energy")
-    top.legend()
+    top.set_ylabel("energy" + unit(summary, "energy"))
+    legend(top)
     top.set_title(title(summary))
     E0 = h["E_total"][0]
-    scale = abs(E0) if E0 != 0 else 1.0
+    # summary.json's E_scale: |J0|, or for a start from rest (J0 = 0) the energy the run
+    # exchanges; never a division by zero, never an absolute drift under a relative label.
+    scale = summary.get("E_scale") or abs(E0) or 1.0
     bottom.plot(t, [(e - E0) / scale for e in h["E_total"]], "k")
-    bottom.set_ylabel("(J − J0)/|J0|")
-    bottom.set_xlabel("t")
+    if scale == abs(E0):
+        bottom.set_ylabel("(J − J0)/|J0|")
+    else:
+        bottom.set_ylabel("(J − J0)/E_scale")
+        bottom.set_title("E_scale = max(E_kin + |E_pot|)/2 = %.4g (J0 = %.3g)" % (scale, E0), fontsize=8)
+    bottom.set_xlabel("t" + unit(summary, "time"))
     bottom.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return fig
 
 
 def probe_names(h):
@@ -76,26 +108,24 @@ def displacement_columns(h, p):
     return [c for c in ("u@" + p, "ux@" + p, "uy@" + p) if c in h]
 
 
-def plot_probes(h, summary, path):
-    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6))
+def plot_probes(h, summary):
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(8.5, 6))
     for p in probe_names(h):
         for c in displacement_columns(h, p):
             top.plot(h["t"], h[c], label=c)
         bottom.plot(h["t"], h["lambda@" + p], label="λ@" + p)
-    top.set_ylabel("displacement u")
-    top.legend()
+    top.set_ylabel("displacement u" + unit(summary, "length"))
+    legend(top)
     top.set_title(title(summary))
-    bottom.set_ylabel("multiplier λ ≤ 0")
-    bottom.set_xlabel("t")
-    bottom.legend()
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    bottom.set_ylabel("multiplier λ ≤ 0" + unit(summary, "force"))
+    bottom.set_xlabel("t" + unit(summary, "time"))
+    legend(bottom)
+    return fig
 
 
-def plot_contact(h, summary, path):
+def plot_contact(h, summary):
     names = probe_names(h)
-    fig, axes = plt.subplots(2 if names else 1, 1, sharex=True, figsize=(7, 6 if names else 3.5), squeeze=False)
+    fig, axes = plt.subplots(2 if names else 1, 1, sharex=True, figsize=(8.5, 6 if names else 3.5), squeeze=False)
     top = axes[0][0]
     top.step(h["t"], h["active"], where="post", color="C3")
     top.set_ylabel("active constraints")
@@ -104,12 +134,10 @@ def plot_contact(h, summary, path):
         bottom = axes[1][0]
         for p in names:
             bottom.plot(h["t"], [-l for l in h["lambda@" + p]], label="−λ@" + p)
-        bottom.set_ylabel("contact force at the probe")
-        bottom.legend()
-    axes[-1][0].set_xlabel("t")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+        bottom.set_ylabel("contact force at the probe" + unit(summary, "force"))
+        legend(bottom)
+    axes[-1][0].set_xlabel("t" + unit(summary, "time"))
+    return fig
 
 
 def read_contact(path):
@@ -128,10 +156,10 @@ def read_contact(path):
     return times, s, pressure
 
 
-def plot_contact_pressure(contact_csv, summary, path):
+def plot_contact_pressure(contact_csv, summary):
     times, s, pressure = read_contact(contact_csv)
     if not s or len(times) < 2:
-        return
+        return None
     # Contact means a pressure above the QP's round-off (about 1e-11 of the peak): the
     # part of Γ_C that touches at some time, with a margin of two vertices.
     peak = max(max(p) for p in pressure)
@@ -140,41 +168,68 @@ def plot_contact_pressure(contact_csv, summary, path):
     lo, hi = max(min(touched) - 2, 0), min(max(touched) + 2, len(s) - 1)
     s = s[lo : hi + 1]
     pressure = [p[lo : hi + 1] for p in pressure]
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5), gridspec_kw={"width_ratios": [3, 2]})
-    image = left.pcolormesh(s, times, pressure, shading="nearest", cmap="viridis")
-    fig.colorbar(image, ax=left, label="contact pressure")
-    left.set_xlabel("position along the plane s")
-    left.set_ylabel("t")
-    left.set_title(title(summary), fontsize=9)
-    # Profiles at the time of the peak pressure and at a few times across the contact.
+    # And the time window of the contact (a tenth of it, at least two frames, either
+    # side): a short impact in a long run would otherwise be a line across the image.
     in_contact = [k for k, p in enumerate(pressure) if max(p) > floor]
     if in_contact:
         first, last = in_contact[0], in_contact[-1]
+        margin = max(2, (last - first) // 10)
+        k0, k1 = max(first - margin, 0), min(last + margin, len(times) - 1)
+    else:
+        k0, k1 = 0, len(times) - 1
+    window = times[k0 : k1 + 1]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.5), gridspec_kw={"width_ratios": [3, 2]})
+    image = left.pcolormesh(s, window, pressure[k0 : k1 + 1], shading="nearest", cmap="viridis")
+    fig.colorbar(image, ax=left, label="contact pressure" + unit(summary, "pressure"))
+    left.set_xlabel("position along the plane s" + unit(summary, "length"))
+    left.set_ylabel("t" + unit(summary, "time"))
+    left.set_title(title(summary), fontsize=9)
+    # Profiles at the time of the peak pressure and at a few times across the contact.
+    if in_contact:
         at_peak = max(in_contact, key=lambda k: max(pressure[k]))
         picks = sorted({first + (last - first) * q // 4 for q in range(1, 4)} | {at_peak})
         for k in picks:
             right.plot(s, pressure[k], marker=".", label="t = %.4g" % times[k])
-        right.legend(fontsize=8)
-    right.set_xlabel("position along the plane s")
-    right.set_ylabel("contact pressure")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+        legend(right)
+    right.set_xlabel("position along the plane s" + unit(summary, "length"))
+    right.set_ylabel("contact pressure" + unit(summary, "pressure"))
+    return fig
 
 
-def main(run_dir):
+def figures(run_dir):
+    """The figures of a run, by file name (tests/cli/check_plots.py looks at them)."""
     h = read_history(os.path.join(run_dir, "history.csv"))
     with open(os.path.join(run_dir, "summary.json")) as f:
         summary = json.load(f)
-    out = os.path.join(run_dir, "plots")
-    os.makedirs(out, exist_ok=True)
-    plot_energy(h, summary, os.path.join(out, "energy.png"))
+    yield "energy.png", plot_energy(h, summary)
     if probe_names(h):
-        plot_probes(h, summary, os.path.join(out, "probes.png"))
-    plot_contact(h, summary, os.path.join(out, "contact.png"))
+        yield "probes.png", plot_probes(h, summary)
+    yield "contact.png", plot_contact(h, summary)
     contact_csv = os.path.join(run_dir, "contact.csv")
     if os.path.isfile(contact_csv):
-        plot_contact_pressure(contact_csv, summary, os.path.join(out, "contact_pressure.png"))
+        fig = plot_contact_pressure(contact_csv, summary)
+        if fig is not None:
+            yield "contact_pressure.png", fig
+
+
+def save(fig, path):
+    """Writes the image under a temporary name, then renames it: never half an image."""
+    temporary = path + ".tmp"
+    try:
+        fig.tight_layout()
+        fig.savefig(temporary, dpi=110, format="png", bbox_inches="tight")  # tight: the outside legends
+        os.replace(temporary, path)
+    finally:
+        plt.close(fig)
+        if os.path.exists(temporary):
+            os.remove(temporary)
+
+
+def main(run_dir):
+    out = os.path.join(run_dir, "plots")
+    os.makedirs(out, exist_ok=True)
+    for name, fig in figures(run_dir):
+        save(fig, os.path.join(out, name))
 
 
 if __name__ == "__main__":

@@ -6,18 +6,19 @@
 //
 // Every step records the discrete energy J = ½VᵀCV + ½UᵀAU − LᵀU split into its
 // kinetic and potential parts, the active constraints, the QP iterations and time,
-// and the probes (u, v and the seed's multiplier λ ≤ 0 at named points).  A NaN or a
-// QP failure stops the run with the step number (exit status 3), after closing the
-// history and the field series so that the blow-up can be looked at; summary.json is
-// written after the time loop, so a directory without it is an unfinished run.  Every
-// file is written under a temporary name and renamed when complete (atomic_file.hpp);
-// Ctrl-C stops the loop cleanly: the files hold the steps computed, summary.json says
-// "partial": true, the exit status is 130.  The plots come last, made from the
-// finished files by the embedded scripts/plot_run.py.
+// and the probes (u, v and the seed's multiplier λ ≤ 0 at named points).  A NaN or an
+// infinity born in the time loop (in the state, the energy or the data of a step QP)
+// or a QP failure stops the run with the step number (exit status 3), after closing
+// the history and the field series up to the last good step so that the blow-up can
+// be looked at; summary.json is written after the time loop, so a directory without
+// it is an unfinished run.  Every file is written under a temporary name and renamed
+// when complete (atomic_file.hpp); Ctrl-C stops the loop cleanly: the files hold the
+// steps computed, summary.json says "partial": true, the exit status is 130.  The
+// plots come last, made from the finished files by the embedded scripts/plot_run.py
+// (a Ctrl-C there stops the plots only: the data files are complete; exit 130).
 #include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -36,8 +37,11 @@
 #include "contact_history.hpp"
 #include "derived_fields.hpp"
 #include "embedded_scripts.hpp"
+#include "diagnostics.hpp"
 #include "exact_solution.hpp"
+#include "interrupt.hpp"
 #include "python_script.hpp"
+#include "run_report.hpp"
 #include "simulation.hpp"
 
 namespace cdyn::app {
@@ -45,26 +49,6 @@ namespace cdyn::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Ctrl-C (SIGINT) or SIGTERM during the time loop: the handler only raises this flag;
-// the loop stops after the step in progress and the run ends as usual, with what was
-// computed so far written and flagged "partial" in summary.json (exit status 130).
-volatile std::sig_atomic_t interrupted = 0;
-extern "C" void on_interrupt(int) { interrupted = 1; }
-
-// Installs the handler for the time loop and puts the default one back afterwards
-// (a second Ctrl-C during the plots or outside the loop kills as usual).
-struct InterruptGuard {
-  InterruptGuard() {
-    interrupted = 0;
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
-  }
-  ~InterruptGuard() {
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
-  }
-};
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -99,7 +83,7 @@ std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::V
 // A one-line progress report on a terminal, rewritten in place.
 void progress(int step, int n, double t, double drift, int active, double elapsed) {
   const double eta = step > 0 ? elapsed * (n - step) / step : 0.0;
-  std::fprintf(stderr, "\r  step %d/%d  t = %.4g  |J - J0|/|J0| = %.2e  active %d  ETA %.0f s   ", step, n, t, drift,
+  std::fprintf(stderr, "\r  step %d/%d  t = %.4g  |J - J0|/E_scale = %.2e  active %d  ETA %.0f s   ", step, n, t, drift,
                active, eta);
   std::fflush(stderr);
 }
@@ -230,6 +214,9 @@ int cmd_run(const RunOptions& opt) {
   const bool make_plots = sim.spec.output.plots;
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
+  const std::vector<std::string> warnings = run_warnings(sim);
+  if (opt.warnings)
+    for (const std::string& w : warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
 
   const std::filesystem::path out = opt.out.empty() ? std::filesystem::path("out") / sim.scene_name : std::filesystem::path(opt.out);
   std::error_code ec;
@@ -241,18 +228,19 @@ int cmd_run(const RunOptions& opt) {
 
   const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
   State s = sim.initial;
-  const double E0 = sim.scheme->energy(s).total();
-  double max_drift = 0.0, max_violation = p.max_violation(s.U), qp_iters = 0.0, qp_seconds = 0.0, E_final = E0;
+  const Energy E_initial = sim.scheme->energy(s);
+  const double E0 = E_initial.total();
+  EnergyDrift drift(E_initial);
+  double max_violation = p.max_violation(s.U), qp_iters = 0.0, qp_seconds = 0.0, E_final = E0;
   double energy_iters = 0.0, max_reconstruction_kkt = 0.0;
   int max_active = 0;
   double max_kkt = 0.0;  // the largest step-QP KKT residual (≤ solver.tol: the steps are solved)
   Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
   Eigen::VectorXd force_xy;  // the last step's reaction in (x, y), for every output
 
-  auto record = [&](int step, const StepStats& st) {
-    const Energy E = sim.scheme->energy(s);
+  auto record = [&](int step, const StepStats& st, const Energy& E) {
     E_final = E.total();
-    max_drift = std::max(max_drift, std::abs(E_final - E0) / std::abs(E0));
+    drift.observe(E);
     force_xy = reaction_xy(p, s.reaction);
     history.record(step, s, st, E, rate, force_xy);
   };
@@ -270,21 +258,38 @@ int cmd_run(const RunOptions& opt) {
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
-  record(0, StepStats{});
+  record(0, StepStats{}, E_initial);
   write_fields_at(0);
 
   int steps_done = 0;
-  std::optional<InterruptGuard> guard(std::in_place);
-  for (int n = 1; n <= sim.n_steps && !interrupted; ++n) {
+  // Ctrl-C stops the loop after the step in progress (interrupt.hpp); the guard stays
+  // through the plots, whose interruption leaves the data files complete.
+  InterruptGuard guard;
+  for (int n = 1; n <= sim.n_steps && !interrupted(); ++n) {
     const Eigen::VectorXd U_old = s.U;
     StepStats st;
+    Energy E;
+    // Everything non-finite born here is a numerical failure, not bad input: the data
+    // were checked before the loop, so a step QP refusing an infinite r (its input
+    // check throws InputError) means the run blew up.
+    auto fail = [&](const std::string& what) {
+      history.close();  // the history and the field series up to the last good step, for a look at them
+      if (fields) fields->finish();
+      char at[64];
+      std::snprintf(at, sizeof at, "step %d (t = %.6g): ", n, n * sim.dt);  // (s.t: before or after the step)
+      throw NumericalError(at + what + "; steps 0 to " + std::to_string(n - 1) + " are in " +
+                           (out / "history.csv").string());
+    };
     try {
       st = sim.scheme->step(s);
       if (!s.U.allFinite() || !s.V.allFinite()) throw NumericalError("the solution is not finite (NaN or Inf)");
+      E = sim.scheme->energy(s);
+      if (!std::isfinite(E.total())) throw NumericalError("the energy is not finite (the solution blew up)");
     } catch (const NumericalError& e) {
-      history.close();  // the history and the field series up to the failure, for a look at them
-      if (fields) fields->finish();
-      throw NumericalError("step " + std::to_string(n) + " (t = " + std::to_string(s.t + sim.dt) + "): " + e.what());
+      fail(e.what());
+    } catch (const InputError& e) {
+      fail(std::string("non-finite data in the step's QP (") + e.what() +
+           "): the solution blew up, or a datum is not finite at this time");
     }
     // the rate in (x, y) (global(): the unknowns are rotated components at the contact
     // nodes of an inclined plane); on the fixed dofs it stays 0 (U_D is constant in time)
@@ -297,13 +302,12 @@ int cmd_run(const RunOptions& opt) {
     max_active = std::max(max_active, st.active);
     max_kkt = std::max(max_kkt, st.kkt_residual);
     max_violation = std::max(max_violation, p.max_violation(s.U, s.t));
-    record(n, st);
+    record(n, st, E);
     steps_done = n;
     write_fields_at(n);
     if (show_progress && (n % 10 == 0 || n == sim.n_steps))
-      progress(n, sim.n_steps, s.t, max_drift, st.active, seconds_since(t0));
+      progress(n, sim.n_steps, s.t, drift.rel(), st.active, seconds_since(t0));
   }
-  guard.reset();
   const bool partial = steps_done < sim.n_steps;
   if (partial && fields && steps_done % sim.output_every != 0) {  // the last state computed
     const auto tf = Clock::now();
@@ -336,7 +340,9 @@ int cmd_run(const RunOptions& opt) {
   j["h"] = sim.mesh->h_max();
   j["E0"] = E0;
   j["E_final"] = E_final;
-  j["E_rel_drift"] = max_drift;
+  j["E_rel_drift"] = drift.rel();
+  j["E_abs_drift"] = drift.abs();
+  j["E_scale"] = drift.scale();
   j["max_violation"] = max_violation;
   j["max_active"] = max_active;
   j["wall_s"] = wall;
@@ -354,26 +360,52 @@ int cmd_run(const RunOptions& opt) {
     j["max_penetration"] = history.max_penetration();  // the whole boundary against every obstacle
   }
   j["wellposed"] = wellposedness_summary(sim);
+  const SceneSpec::Units& units = sim.spec.units;
+  j["units"] = units.length.empty() ? nlohmann::ordered_json()
+                                    : nlohmann::ordered_json{{"length", units.length}, {"force", units.force}, {"time", units.time}};
+  j["warnings"] = warnings;
+  j["written"] = written_bytes(out);  // before summary.json and the plots, which are made from it
   write_file_atomically(out / "summary.json", j.dump(2) + "\n");
 
   std::string plot_note;
-  if (make_plots && !partial) plot_note = run_python_script(kPlotRunScript, {out.string()});
+  if (make_plots && !partial && !interrupted()) plot_note = run_python_script(kPlotRunScript, {out.string()});
+  const bool plots_interrupted = !partial && interrupted();
 
   if (!opt.quiet) {
+    const std::string label = partial ? "INTERRUPTED after step " + std::to_string(steps_done) + " of " +
+                                             std::to_string(sim.n_steps) + " (partial results)"
+                                       : "";
+    char energy[200];
+    if (drift.scale_is_J0())
+      std::snprintf(energy, sizeof energy, "max |J - J0|/|J0| = %.3e", drift.rel());
+    else  // J0 = 0 (a start from rest) or small against the energies exchanged
+      std::snprintf(energy, sizeof energy, "max |J - J0| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
+                    drift.abs(), drift.rel(), drift.scale());
     std::printf(
-        "cdyn run %s: %s, %s, %s, solver %s.\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
-        "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, max |J - J0|/|J0| = "
-        "%.3e; max constraint violation %.2e.\n  Condition (12): %s.\n  Results in %s\n",
+        "cdyn run %s: %s, %s, %s, solver %s.%s%s\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
+        "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "
+        "violation %.2e.\n  Condition (12): %s.\n",
         sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), sim.solver_name.c_str(),
-        p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()), steps_done, sim.dt, s.t, wall,
-        wall / per, qp_iters / per, E0, E_final, max_drift, max_violation,
-        wellposedness_line(j["wellposed"]).c_str(), out.string().c_str());
-    if (!plot_note.empty()) std::printf("  Note: no plots (%s).\n", plot_note.c_str());
+        partial ? "\n  " : "", label.c_str(), p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()),
+        steps_done, sim.dt, s.t, wall, wall / per, qp_iters / per, E0, E_final, energy, max_violation,
+        wellposedness_line(j["wellposed"]).c_str());
+    std::string written;
+    for (const auto& [name, bytes] : j["written"].items())
+      if (name != "total") written += (written.empty() ? "" : ", ") + name + " " + human_bytes(bytes.get<std::uintmax_t>());
+    if (const std::uintmax_t plots = bytes_of(out / "plots"); plots > 0) written += ", plots " + human_bytes(plots);
+    std::printf("  Results in %s (%s).\n", out.string().c_str(), written.c_str());
+    if (!warnings.empty()) std::printf("  %zu warning%s (above, and in summary.json).\n", warnings.size(), warnings.size() > 1 ? "s" : "");
+    if (!plot_note.empty() && !plots_interrupted) std::printf("  Note: no plots (%s).\n", plot_note.c_str());
   }
   if (partial) {
     std::fprintf(stderr, "cdyn: interrupted after step %d of %d; the results so far are in %s (summary.json: partial = true)\n",
                  steps_done, sim.n_steps, out.string().c_str());
     return 130;  // the shell's status for a run ended by SIGINT
+  }
+  if (plots_interrupted) {
+    std::fprintf(stderr, "cdyn: interrupted after the time loop; the data files in %s are complete (no plots)\n",
+                 out.string().c_str());
+    return 130;
   }
   return 0;
 }

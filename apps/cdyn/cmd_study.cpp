@@ -2,20 +2,17 @@
 //
 // Runs a scene once per combination of the --vary values (their Cartesian product,
 // the last --vary changing fastest), each run a `cdyn run --quiet` into
-// DIR/run_NNN/ with the values as --set overrides, then reads each run's
-// summary.json and history.csv and writes DIR/study.csv (one row per run) and
-// DIR/work_precision.png (error against wall time, one curve per method).
+// DIR/run_NNN/ with the values as --set overrides (no plots; no field files unless
+// --fields), then reads each run's summary.json and history.csv and writes
+// DIR/study.csv (one row per run) and DIR/work_precision.png (error against wall
+// time, one curve per method, the refinements of a method along it).
 //
-// The error of a run (docs/outputs.md):
-//   - "exact":  the run's summary.json has a numeric error_exact (the scene knows
-//               its analytic solution);
-//   - "finest": else, against the finest run (smallest dt, then smallest h), at the
-//               final time: |u@P − u@P_finest| / max(|u@P_finest|, tiny) for the
-//               first probe P, or |J − J_finest| / |J_finest| when there is no probe.
-//               The finest run is the reference: its error is empty (kind
-//               "reference") and it is not plotted.
-// A run that fails numerically gets kind "failed" and empty numbers; bad input in
-// any run stops the study (exit status 2), naming the run and the key.
+// The error of a run is the measure --error names (study_error.hpp): exact, energy,
+// or a probe's history against the finest run's.  A run that fails numerically gets
+// kind "failed" and empty numbers; bad input in any run stops the study (exit status
+// 2), naming the run and the key.  Ctrl-C stops the study after the run in progress
+// (interrupt.hpp): study.csv holds the runs done, the interrupted one marked
+// partial, and the exit status is 130.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -23,13 +20,17 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cdyn/base/error.hpp"
 #include "commands.hpp"
 #include "embedded_scripts.hpp"
+#include "interrupt.hpp"
 #include "python_script.hpp"
 #include "scene.hpp"
+#include "scene_spec.hpp"
+#include "study_error.hpp"
 
 namespace cdyn::app {
 
@@ -37,7 +38,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kTiny = 1e-300;  // guards the relative error against u_finest = 0
 
 struct Variation {
   std::string key;
@@ -94,93 +94,39 @@ std::vector<std::vector<std::string>> product(const std::vector<Variation>& vari
 }
 
 // What a study keeps of one run.
-struct RunResult {
-  std::string name;                  // run_NNN
+struct RunResult : RunRecord {
   std::vector<std::string> values;   // of the varied keys
   std::vector<std::string> sets;     // the --set overrides of the run
-  bool ok = false;
   std::string failure;               // NumericalError message
-  nlohmann::json summary;
-  std::string probe;                 // first probe's name ("" if none)
-  double u_probe = kNaN;             // u@probe at the final time
-  double error = kNaN;
-  std::string error_kind;
 };
 
 double number(const nlohmann::json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
 }
 
-// The first probe's name and u at the last row of history.csv.
-void read_first_probe(const fs::path& history, RunResult& r) {
-  std::ifstream in(history);
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::vector<std::string> names, values;
-  for (std::stringstream h(header); std::getline(h, line, ',');) names.push_back(line);
-  for (std::stringstream v(last); std::getline(v, line, ',');) values.push_back(line);
-  for (std::size_t c = 0; c < names.size() && c < values.size(); ++c)
-    if (names[c].rfind("u@", 0) == 0) {
-      r.probe = names[c].substr(2);
-      r.u_probe = std::stod(values[c]);
-      return;
-    }
+// "run_001 (time.dt=-0.1)": a run and its values, for messages.
+std::string run_label(const RunResult& r) {
+  std::string values;
+  for (std::size_t i = r.sets.size() - r.values.size(); i < r.sets.size(); ++i)
+    values += (values.empty() ? "" : " ") + r.sets[i];
+  return r.name + " (" + values + ")";
 }
 
-void run_one(const StudyOptions& opt, const fs::path& dir, RunResult& r) {
-  RunOptions run{opt.scene, dir.string(), r.sets, true};
+void run_one(const StudyOptions& opt, const fs::path& dir, const ErrorMeasure& measure, RunResult& r) {
+  RunOptions run{opt.scene, dir.string(), r.sets, true, false};
   try {
-    cmd_run(run);
+    cmd_run(run);  // 130 when interrupted: summary.json says partial
   } catch (const NumericalError& e) {
     r.failure = e.what();
     return;
   } catch (const InputError& e) {
-    std::string values;
-    for (std::size_t i = r.sets.size() - r.values.size(); i < r.sets.size(); ++i) values += (values.empty() ? "" : " ") + r.sets[i];
-    throw InputError(r.name + " (" + values + "): " + e.what());
+    throw InputError(run_label(r) + ": " + e.what());
   }
   std::ifstream in(dir / "summary.json");
   r.summary = nlohmann::json::parse(in);
-  read_first_probe(dir / "history.csv", r);
+  r.partial = r.summary.value("partial", false);
+  read_history((dir / "history.csv").string(), measure, r);
   r.ok = true;
-}
-
-// The errors of all runs (see the header): exact where known, else against the finest.
-void measure_errors(std::vector<RunResult>& runs) {
-  const RunResult* finest = nullptr;
-  for (const RunResult& r : runs) {
-    if (!r.ok) continue;
-    const double dt = number(r.summary, "dt"), h = number(r.summary, "h");
-    if (!finest || dt < number(finest->summary, "dt") ||
-        (dt == number(finest->summary, "dt") && h < number(finest->summary, "h")))
-      finest = &r;
-  }
-  for (RunResult& r : runs) {
-    if (!r.ok) {
-      r.error_kind = "failed";
-    } else if (const double exact = number(r.summary, "error_exact"); !std::isnan(exact)) {
-      r.error = exact;
-      r.error_kind = "exact";
-    } else if (&r == finest) {
-      r.error_kind = "reference";
-    } else if (!finest->probe.empty() && r.probe == finest->probe) {
-      r.error = std::abs(r.u_probe - finest->u_probe) / std::max(std::abs(finest->u_probe), kTiny);
-      r.error_kind = "finest";
-    } else {
-      const double J = number(r.summary, "E_final"), J_ref = number(finest->summary, "E_final");
-      r.error = std::abs(J - J_ref) / std::abs(J_ref);
-      r.error_kind = "finest";
-    }
-    // Errors against the finest run compare final states: they must be at one time.
-    if (r.error_kind == "finest") {
-      const double T = number(r.summary, "T"), T_ref = number(finest->summary, "T");
-      if (std::abs(T - T_ref) > 1e-9 * std::abs(T_ref))
-        std::printf("  note: %s ends at T = %.10g, the finest run at T = %.10g (choose dt that divide time.T)\n",
-                    r.name.c_str(), T, T_ref);
-    }
-  }
 }
 
 // A CSV field: quoted when it holds a comma or a quote (expression values may).
@@ -199,19 +145,22 @@ std::string csv_number(double x) {
   return std::string(buf, end);
 }
 
-void write_study_csv(const fs::path& path, const std::vector<Variation>& varies, const std::vector<RunResult>& runs) {
+void write_study_csv(const fs::path& path, const std::vector<Variation>& varies, const std::vector<RunResult>& runs,
+                     const ErrorMeasure& measure) {
   static const char* kNumbers[] = {"n_dofs", "n_steps", "dt", "h", "wall_s", "s_per_step", "qp_iters_mean", "E_rel_drift"};
   std::ofstream csv(path);
   for (const Variation& v : varies) csv << csv_field(v.key) << ",";
   for (const char* k : kNumbers) csv << k << ",";
-  csv << "E_rel_error_T,error,error_kind,run\n";
+  csv << "E_rel_error_T,error,error_kind,error_measure,partial,run\n";
   for (const RunResult& r : runs) {
     for (const std::string& value : r.values) csv << csv_field(value) << ",";
     for (const char* k : kNumbers) csv << csv_number(r.ok ? number(r.summary, k) : kNaN) << ",";
-    const double E_error_T = r.ok ? std::abs(number(r.summary, "E_final") - number(r.summary, "E0")) /
-                                        std::abs(number(r.summary, "E0"))
-                                  : kNaN;
-    csv << csv_number(E_error_T) << "," << csv_number(r.error) << "," << r.error_kind << "," << r.name << "\n";
+    // |J(T) − J0| against the run's energy scale (summary.json's E_scale: never 0 when J moves)
+    const double scale = r.ok ? number(r.summary, "E_scale") : kNaN;
+    const double E_error_T =
+        r.ok && scale > 0 ? std::abs(number(r.summary, "E_final") - number(r.summary, "E0")) / scale : kNaN;
+    csv << csv_number(E_error_T) << "," << csv_number(r.error) << "," << r.error_kind << "," << measure.name() << ","
+        << (r.partial ? "true" : "false") << "," << r.name << "\n";
   }
   if (!csv) throw InputError(path.string() + ": cannot write");
 }
@@ -245,8 +194,10 @@ int cmd_study(const StudyOptions& opt) {
       if (varies[i].key == varies.back().key) throw InputError("--vary " + varies.back().key + ": given twice");
   }
   Scene base = Scene::load(opt.scene);
-  // Plots of each run cost a python start each: off unless a --set turns them on.
+  // Plots of each run cost a python start each, field files hundreds of megabytes over
+  // a study: off unless asked for (--fields, or a --set turning them on).
   std::vector<std::string> common = {"output.plots=false"};
+  if (!opt.fields) common.push_back("output.fields=false");
   for (const std::string& a : command_line_paths(opt.sets)) {
     base.set(a);
     common.push_back(a);
@@ -254,6 +205,7 @@ int cmd_study(const StudyOptions& opt) {
   const fs::path dir = opt.out.empty() ? fs::path("out") / (base.name() + "-study") : fs::path(opt.out);
 
   std::vector<RunResult> runs;
+  std::optional<ErrorMeasure> measure;
   for (const auto& values : product(varies)) {
     RunResult r;
     char name[32];
@@ -261,45 +213,88 @@ int cmd_study(const StudyOptions& opt) {
     r.name = name;
     r.values = values;
     r.sets = common;
+    std::vector<std::string> varied;
+    for (std::size_t k = 0; k < varies.size(); ++k) varied.push_back(varies[k].key + "=" + values[k]);
+    varied = command_line_paths(varied);
     Scene check = base;
     for (std::size_t k = 0; k < varies.size(); ++k) {
-      const std::string a = varies[k].key + "=" + values[k];
       try {
-        check.set(a);
+        check.set(varied[k]);
       } catch (const InputError& e) {
         throw InputError("--vary " + varies[k].key + ": " + e.what());
       }
-      r.sets.push_back(a);
+      r.sets.push_back(varied[k]);
     }
-    r.sets = command_line_paths(r.sets);
+    // Every key of every run read and checked here (what needs the mesh is checked
+    // when the run builds it), and the error measure resolved on each.
+    SceneSpec spec;
+    try {
+      spec = read_scene(check);
+    } catch (const InputError& e) {
+      throw InputError(run_label(r) + ": " + e.what());
+    }
+    const ErrorMeasure m = error_measure(opt.error, spec);
+    if (measure && m.name() != measure->name())
+      throw InputError("--error " + opt.error + ": means " + measure->name() + " for run_000 but " + m.name() + " for " +
+                       r.name + " (give --error)");
+    measure = m;
     runs.push_back(std::move(r));
   }
 
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError(dir.string() + ": cannot create the output directory (" + ec.message() + ")");
-  fs::remove(dir / "study.csv", ec);  // written last: its presence means the study finished
+  fs::remove(dir / "study.csv", ec);  // written last: its presence means the study ended (or was interrupted)
   fs::remove(dir / "work_precision.png", ec);
 
-  std::printf("cdyn study %s: %zu runs into %s\n", base.name().c_str(), runs.size(), dir.string().c_str());
+  std::printf("cdyn study %s: %zu runs into %s, error: %s\n", base.name().c_str(), runs.size(), dir.string().c_str(),
+              measure->name().c_str());
+  std::fflush(stdout);
+  // Ctrl-C: the run in progress stops (its own guard, nested), then the study.
+  InterruptGuard guard;
+  std::size_t done = 0;
   for (RunResult& r : runs) {
-    run_one(opt, dir / r.name, r);
+    if (interrupted()) break;
+    run_one(opt, dir / r.name, *measure, r);
+    ++done;
     std::string values;
     for (std::size_t k = 0; k < varies.size(); ++k) values += " " + varies[k].key + "=" + r.values[k];
-    if (r.ok)
-      std::printf("  %s%s: %.3g s\n", r.name.c_str(), values.c_str(), number(r.summary, "wall_s"));
-    else
+    if (!r.ok)
       std::printf("  %s%s: failed (%s)\n", r.name.c_str(), values.c_str(), r.failure.c_str());
+    else if (r.partial)
+      std::printf("  %s%s: interrupted after %d steps\n", r.name.c_str(), values.c_str(),
+                  r.summary["n_steps"].get<int>());
+    else
+      std::printf("  %s%s: %.3g s\n", r.name.c_str(), values.c_str(), number(r.summary, "wall_s"));
+    if (r.ok)
+      for (const auto& w : r.summary.value("warnings", nlohmann::json::array()))
+        std::printf("    warning: %s\n", w.get<std::string>().c_str());
     std::fflush(stdout);
   }
+  const bool stopped = done < runs.size() || interrupted();
+  const std::size_t asked = runs.size();
+  runs.resize(done);  // the runs not started are left out
 
-  measure_errors(runs);
-  write_study_csv(dir / "study.csv", varies, runs);
-  const std::string note = run_python_script(kPlotStudyScript, {dir.string()});
+  std::vector<RunRecord*> records;
+  for (RunResult& r : runs) records.push_back(&r);
+  measure_errors(*measure, records);
+  write_study_csv(dir / "study.csv", varies, runs, *measure);
+  const std::string note = stopped ? "interrupted" : run_python_script(kPlotStudyScript, {dir.string()});
   std::printf("\n");
   print_table(varies, runs);
   std::printf("  Results in %s (study.csv%s)\n", dir.string().c_str(), note.empty() ? ", work_precision.png" : "");
-  if (!note.empty()) std::printf("  Note: no work-precision plot (%s).\n", note.c_str());
+  if (!note.empty() && !stopped && !interrupted())
+    std::printf("  Note: no work-precision plot (%s).\n", note.c_str());
+  if (stopped || interrupted()) {  // (a Ctrl-C during the plot too)
+    const std::string last = runs.empty() ? "" : runs.back().name;
+    if (!runs.empty() && runs.back().partial)
+      std::fprintf(stderr, "cdyn: study interrupted during %s (run %zu of %zu); study.csv in %s holds the runs done, %s partial\n",
+                   last.c_str(), done, asked, dir.string().c_str(), last.c_str());
+    else
+      std::fprintf(stderr, "cdyn: study interrupted after %zu of %zu runs; study.csv in %s holds them\n", done, asked,
+                   dir.string().c_str());
+    return 130;
+  }
   return 0;
 }
 

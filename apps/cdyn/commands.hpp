@@ -24,6 +24,7 @@ struct RunOptions {
   std::string out;                 // empty: out/<scene name>
   std::vector<std::string> sets;   // key=value overrides
   bool quiet = false;
+  bool warnings = true;            // print the run's warnings on stderr (cdyn study prints its own)
 };
 int cmd_run(const RunOptions& options);
 
@@ -32,14 +33,16 @@ int cmd_run(const RunOptions& options);
 // makes them absolute.  Applied by every command that takes --set.
 std::vector<std::string> command_line_paths(std::vector<std::string> sets);
 
-// `cdyn study [SCENE.toml] --vary key=v1,v2,... [--vary ...] [--out DIR] [--set ...]`:
-// one run per combination of the varied values, then study.csv and the
-// work-precision plot (docs/outputs.md).
+// `cdyn study [SCENE.toml] --vary key=v1,v2,... [--vary ...] [--out DIR] [--set ...]
+// [--error MEASURE] [--fields]`: one run per combination of the varied values, then
+// study.csv and the work-precision plot (docs/outputs.md).
 struct StudyOptions {
   std::string scene;
   std::string out;                 // empty: out/<scene name>-study
   std::vector<std::string> varies; // key=v1,v2,...
   std::vector<std::string> sets;   // applied to every run, before the varied values
+  std::string error = "auto";      // the error measure (study_error.hpp)
+  bool fields = false;             // the runs write their field files
 };
 int cmd_study(const StudyOptions& options);
 

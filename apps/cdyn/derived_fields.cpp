@@ -27,8 +27,7 @@ std::vector<FieldArray> stress_arrays(const std::vector<StressState>& states) {
 }  // namespace
 
 DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
-  if (sim.components == 2 && sim.has_plane)
-    contact_.emplace(sim.problem, sim.contact_parts, sim.plane_point, sim.plane_normal);
+  if (sim.components == 2 && sim.has_obstacle) contact_.emplace(sim.problem);
 }
 
 ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy) const {

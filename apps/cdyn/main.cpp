@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   study->add_option("--out", study_options.out, "output directory (default out/<scene name>-study)");
   study->add_option("--set", study_options.sets, "override a scene key in every run")->allow_extra_args(false);
+  study->add_option("--error", study_options.error,
+                    "the error of a run: auto (default), exact, energy or probe:NAME[:COLUMN] against the finest run");
+  study->add_flag("--fields", study_options.fields, "the runs write their field files (off by default)");
 
   std::string mesh_file;
   auto* mesh = app.add_subcommand("mesh", "Summarise a mesh (.geo or .msh) and its physical groups");

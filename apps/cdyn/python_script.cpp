@@ -4,7 +4,11 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <cerrno>
+#include <csignal>
 #include <cstdlib>
+
+#include "interrupt.hpp"
 
 extern char** environ;
 
@@ -12,8 +16,10 @@ namespace cdyn::app {
 
 namespace {
 
-// The scripts' "no matplotlib here" exit status (scripts/plot_run.py, plot_study.py).
+// The scripts' "no matplotlib here" exit status (scripts/plot_run.py, plot_study.py),
+// and their status on Ctrl-C (they exit quietly with it, as the shell does).
 constexpr int kNoMatplotlib = 3;
+constexpr int kInterrupted = 130;
 
 // Exit status of `interpreter -c script args...`, or -1 if it could not be started.
 int spawn_and_wait(const std::string& interpreter, const char* script, const std::vector<std::string>& args) {
@@ -25,7 +31,9 @@ int spawn_and_wait(const std::string& interpreter, const char* script, const std
   pid_t pid;
   if (posix_spawnp(&pid, interpreter.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return -1;
   int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM)) return kInterrupted;
   if (!WIFEXITED(status)) return -1;
   const int code = WEXITSTATUS(status);
   return code == 127 ? -1 : code;  // 127: the exec itself failed
@@ -40,6 +48,9 @@ std::string run_python_script(const char* script, const std::vector<std::string>
   for (const std::string& python : candidates) {
     const int code = spawn_and_wait(python, script, args);
     if (code == 0) return "";
+    // Ctrl-C reaches the script too (the terminal signals the whole process group):
+    // no other interpreter is tried, the caller sees interrupted() and says so.
+    if (code == kInterrupted || interrupted()) return "interrupted";
     if (code == -1) continue;
     found_python = true;
     if (code != kNoMatplotlib) return python + " failed on the plot script (exit status " + std::to_string(code) + ")";

@@ -19,7 +19,7 @@ namespace {
 // stands for a name the user chooses (a gmsh parameter, a region), whose keys are
 // checked like the others (pattern_of).
 const std::set<std::string> kKnownKeys = {
-    "name",           "description",
+    "name",           "description",    "units",
     "mesh.kind",      "mesh.n",         "mesh.length",     "mesh.file",       "mesh.set.*",
     "materials.*.E",  "materials.*.nu", "materials.*.lambda", "materials.*.mu", "materials.*.rho",
     "physics.model",  "physics.E",      "physics.rho",     "physics.tension", "physics.f",
@@ -68,6 +68,21 @@ bool is_known_table(const std::string& key) {
                      [&](const std::string& k) { return k.rfind(prefix, 0) == 0; });
 }
 
+// The names of a table in the order they were written: toml++ keeps a table sorted
+// by name, but each parsed node remembers where it was (line, column; an inline
+// table's entries share a line).  Copies of a node lose that (toml++'s choice), so
+// Scene keeps the order itself (order_).
+std::vector<std::string> source_order(const toml::table& t) {
+  std::vector<std::pair<toml::source_position, std::string>> named;
+  for (const auto& [k, v] : t) named.emplace_back(v.source().begin, std::string(k.str()));
+  std::stable_sort(named.begin(), named.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.first.line, a.first.column) < std::pair(b.first.line, b.first.column);
+  });
+  std::vector<std::string> out;
+  for (auto& [at, name] : named) out.push_back(std::move(name));
+  return out;
+}
+
 std::string type_name(const toml::node& n) {
   std::ostringstream s;
   s << n.type();
@@ -89,6 +104,8 @@ Scene Scene::from_string(const std::string& text, const std::string& source) {
                      std::string(e.description()));
   }
   s.validate(s.table_, "");
+  for (const std::string& key : kFreeTables)
+    if (const toml::table* t = s.table_.at_path(key).as_table()) s.order_[key] = source_order(*t);
   s.name_ = s.string("name", std::filesystem::path(source).stem().string());
   return s;
 }
@@ -153,10 +170,23 @@ void Scene::set(const std::string& assignment) {
     if (!value) throw InputError("--set " + key + ": expected a table, e.g. { name = value }");
     validate(*value, key);
   }
+  if (kFreeTables.count(key)) {
+    const toml::table* names = parsed.get("v")->as_table();
+    order_[key] = names ? source_order(*names) : std::vector<std::string>{};
+  }
   t->insert_or_assign(key.substr(start), *parsed.get("v"));
   if (key == "name") name_ = value;
   // method.pair and method.mass are alternatives: overriding one replaces the other.
   if (key == "method.pair" || key == "method.mass") t->erase(key == "method.pair" ? "mass" : "pair");
+  // Another mesh kind drops the keys the new kind does not take (else refused as
+  // ignored, scene_spec.cpp): --set mesh.kind=gmsh on a unit_square scene works.
+  if (key == "mesh.kind") {
+    const auto* kind = t->get_as<std::string>("kind");
+    const std::string k = kind ? kind->get() : "";
+    if (k == "gmsh") t->erase("n");
+    if (k != "interval") t->erase("length");
+    if (k == "interval" || k == "unit_square") t->erase("file"), t->erase("set");
+  }
 }
 
 const toml::node* Scene::find(const std::string& key) const {
@@ -256,18 +286,38 @@ std::vector<double> Scene::numbers(const std::string& key) const {
 }
 
 std::vector<std::string> Scene::keys(const std::string& table) const {
-  std::vector<std::string> out;
   const toml::node* n = find(table);
-  if (!n) return out;
+  if (!n) return {};
   const toml::table* t = n->as_table();
   if (!t) throw InputError(table + ": expected a table");
+  // The scene's order where it was recorded (output.probes), else toml++'s (by name).
+  const auto it = order_.find(table);
+  if (it != order_.end() && it->second.size() == t->size()) return it->second;
+  std::vector<std::string> out;
   for (const auto& [k, v] : *t) out.emplace_back(k.str());
   return out;
 }
 
 std::string Scene::dump() const {
+  // output.probes is written last, by hand, in the scene's order (keys()): toml++
+  // would write it sorted by name, and a rerun of scene.toml would reorder the probes.
+  toml::table copy = table_;
+  const std::vector<std::string> probes = keys("output.probes");
+  if (!probes.empty()) {
+    toml::table* output = copy["output"].as_table();
+    output->erase("probes");
+    output->is_inline(false);  // an inline [output] could not take the [output.probes] below
+  }
   std::ostringstream s;
-  s << table_ << "\n";
+  s << copy << "\n";
+  if (probes.empty()) return s.str();
+  s << "\n[output.probes]\n";
+  const toml::table& table = *find("output.probes")->as_table();
+  for (const std::string& name : probes) {
+    toml::table one;  // one entry, so that toml++ quotes the name as TOML needs
+    one.insert(name, *table.get(name));
+    s << one << "\n";
+  }
   return s.str();
 }
 

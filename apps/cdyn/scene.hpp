@@ -7,6 +7,7 @@
 // key in every error.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <toml++/toml.h>
@@ -39,7 +40,8 @@ class Scene {
   // that a list of expressions may hold plain numbers: traction = [0, -10]).
   std::vector<std::string> strings(const std::string& key, std::vector<std::string> fallback = {}) const;
   std::vector<double> numbers(const std::string& key) const;
-  // The names under a table key (e.g. the probes of output.probes).
+  // The names under a table key (e.g. the probes of output.probes); for
+  // output.probes in the order the scene (or the --set) wrote them.
   std::vector<std::string> keys(const std::string& table) const;
 
   // The scene as TOML text (with overrides applied), written next to the results.
@@ -53,6 +55,7 @@ class Scene {
 
   toml::table table_;
   std::string name_, source_;
+  std::map<std::string, std::vector<std::string>> order_;  // output.probes: the names as written
 };
 
 // The embedded default scene's text.

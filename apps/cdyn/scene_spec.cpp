@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -90,6 +91,17 @@ void read_mesh_keys(const Scene& s, SceneSpec& spec) {
     throw InputError("mesh.kind: unknown kind '" + m.kind + "' (interval, unit_square, gmsh)");
   if (spec.physics.model == "elasticity" && m.kind == "interval")
     throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
+  // A key of another kind would be ignored: refused (a --set of mesh.kind drops them,
+  // scene.cpp).
+  if (m.kind == "gmsh") {
+    for (const char* key : {"mesh.n", "mesh.length"})
+      if (s.has(key))
+        throw InputError(std::string(key) + ": not a key of mesh.kind = gmsh (the mesh is the file's, mesh.file)");
+  } else if (s.has("mesh.file")) {
+    throw InputError("mesh.file: not a key of mesh.kind = " + m.kind + " (a built-in mesh; a file needs mesh.kind = gmsh)");
+  }
+  if (m.kind == "unit_square" && s.has("mesh.length"))
+    throw InputError("mesh.length: not a key of mesh.kind = unit_square (its sides are 1)");
   if (m.kind == "gmsh") {
     // A relative mesh.file is relative to the scene file's directory (as an #include
     // is to its file), so a scene runs from anywhere; for the embedded scene, to the
@@ -276,6 +288,13 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
     throw InputError("time.T: T/dt = " + std::to_string(steps) +
                      " steps is more than a run can take (at most 2147483647)");
   t.n_steps = static_cast<int>(steps);
+  // The last step ends at n_steps·dt: past T when T is no multiple of dt.
+  if (steps - t.T / t.dt > 1e-6) {
+    char text[200];
+    std::snprintf(text, sizeof text, "time.T = %g is not a multiple of time.dt = %g: %d steps, to t = %.10g", t.T, t.dt,
+                  t.n_steps, t.n_steps * t.dt);
+    spec.warnings.push_back(text);
+  }
   t.scheme = s.string("time.scheme", "auto");  // auto: recommended_scheme() of the problem
   t.parameters.beta = s.number("time.beta", t.parameters.beta);
   t.parameters.gamma = s.number("time.gamma", t.parameters.gamma);
@@ -295,11 +314,29 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   if (v.options.pdas_cg_iterations < 0) throw InputError("solver.cg_iterations: must be 0 (no CG) or more");
 }
 
+// units = "length, force, time", e.g. "mm, N, s".
+SceneSpec::Units units(const Scene& s) {
+  if (!s.has("units")) return {};
+  std::vector<std::string> names(1);
+  for (char c : s.string("units")) {
+    if (c == ',')
+      names.emplace_back();
+    else if (c != ' ')
+      names.back() += c;
+  }
+  if (names.size() != 3 || names[0].empty() || names[1].empty() || names[2].empty())
+    throw InputError("units: expected the units of length, force and time, e.g. \"mm, N, s\"");
+  return {names[0], names[1], names[2]};
+}
+
 void read_output(const Scene& s, SceneSpec& spec) {
   SceneSpec::Output& o = spec.output;
-  o.every = s.integer("output.every", 1);
+  // By default about 100 to 200 field files and contact.csv frames a run, whatever its
+  // length (every = floor(n_steps / 100)): enough to watch, not a file per step.
+  const int every = std::max(1, spec.time.n_steps / 100);
+  o.every = s.integer("output.every", every);
   if (o.every < 1) throw InputError("output.every: must be at least 1");
-  o.contact_every = s.integer("output.contact_every", 1);
+  o.contact_every = s.integer("output.contact_every", every);
   if (o.contact_every < 1) throw InputError("output.contact_every: must be at least 1");
   o.fields = s.boolean("output.fields", true);
   o.plots = s.boolean("output.plots", true);
@@ -307,6 +344,7 @@ void read_output(const Scene& s, SceneSpec& spec) {
   for (const std::string& name : s.keys("output.probes"))
     o.probes.emplace_back(name, s.numbers("output.probes." + name));
   spec.exact_solution = s.string("exact.solution", "");
+  spec.units = units(s);
 }
 
 }  // namespace

@@ -106,14 +106,24 @@ struct SceneSpec {
     QPOptions options;
   } solver;
 
+  // `units`: the names of the units of length, force and time the scene's numbers are
+  // in ("mm, N, s"), for the plots' axes and summary.json; empty when not given.
+  struct Units {
+    std::string length, force, time;
+  } units;
+
   struct Output {
-    int every = 1, contact_every = 1;
+    int every = 1, contact_every = 1;  // default: about 100 to 200 frames per run
     bool fields = true, plots = true;
     bool stress = true;        // elasticity: σ, ε, von Mises in the field files
     std::vector<std::pair<std::string, std::vector<double>>> probes;  // name, coordinates
   } output;
 
   std::string exact_solution;  // exact.solution, or empty
+
+  // What the scene asks that is accepted but probably not meant (e.g. a T that is no
+  // multiple of dt): printed and listed in summary.json's "warnings".
+  std::vector<std::string> warnings;
 
   int components() const { return physics.model == "elasticity" ? 2 : 1; }
 };

@@ -9,6 +9,7 @@
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/problems/oscillator.hpp"
 #include "cdyn/problems/scalar_wave.hpp"
+#include "diagnostics.hpp"
 
 namespace cdyn::app {
 
@@ -233,8 +234,7 @@ Simulation make_simulation(const SceneSpec& spec) {
   // Initial state: U⁰ must lie in K̄^h; V⁰ from C V⁰ = B U̇⁰.
   sim.initial.U = initial_field(p, s.initial.u);
   const double violation = p.max_violation(sim.initial.U);
-  if (violation > 1e-12)
-    throw InputError("initial.u: the initial state violates the obstacle (by " + std::to_string(violation) + ")");
+  if (violation > 1e-12) infeasible_initial_state(sim, violation);  // names initial.u or obstacle.normal
   sim.initial.V = initial_velocity(p, initial_field(p, s.initial.v));
   sim.initial.reaction = Eigen::VectorXd::Zero(p.n_free());
   sim.scheme->initialize(sim.initial);  // e.g. U⁰'s massless part from eq. (14)

@@ -61,7 +61,7 @@ def area(geo):
 
 # --- the disk, P1+/P0, midpoint -------------------------------------------------------
 rho, v0, g = 1e-6, 1000.0, 9810.0
-s, h, c = run("disk.toml", "disk_midpoint")
+s, h, c = run("disk.toml", "disk_midpoint", "output.contact_every=1")  # contact.csv at every step
 m = rho * area("disk.geo")
 impact = s["impact"]
 free = [r for r in h if r["t"] < impact["t_first_contact"] - 1e-12]
@@ -109,7 +109,8 @@ check(s["E_final"] / s["E0"] > 2, f"consistent mass, midpoint: J(T)/J0 = {s['E_f
 for sets in (["time.scheme=backward_euler"], ["time.scheme=midpoint_end"], ["time.scheme=newmark"],
              ["time.scheme=midpoint_end", "method.mass=redistributed"],
              ["time.scheme=paoli_schatzman", "method.mass=lumped"]):
-    s, h, c = run("disk.toml", "disk_" + "_".join(x.split("=")[1] for x in sets), "time.T=0.004", *sets)
+    s, h, c = run("disk.toml", "disk_" + "_".join(x.split("=")[1] for x in sets), "time.T=0.004",
+                  "output.contact_every=1", *sets)
     min_gap = min(r["gap"] for r in c)
     check(s["max_violation"] == 0 and min_gap >= -1e-12 and s["impact"]["contact"],
           f"{' '.join(sets)}: violation {s['max_violation']:.1e}, min gap {min_gap:.1e} mm")

@@ -21,7 +21,8 @@ endfunction()
 
 run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --config ${CONFIG})
 foreach(f include/cdyn/mass_model.hpp include/cdyn/version.hpp include/cdyn/gmsh_mesh.hpp
-          include/cdyn/fields_output.hpp lib/cmake/cdyn/cdynConfig.cmake lib/cmake/cdyn/cdynConfigVersion.cmake)
+          include/cdyn/fields_output.hpp lib/cmake/cdyn/cdynConfig.cmake lib/cmake/cdyn/cdynConfigVersion.cmake
+          bin/cdyn)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "the install tree lacks ${f}")
   endif()
@@ -38,6 +39,19 @@ foreach(f ${cmake_files})
     endif()
   endforeach()
 endforeach()
+
+# The installed program runs on its own (default scene and plot scripts compiled in),
+# from a directory outside the build and source trees.
+run("the installed cdyn --version" ${prefix}/bin/cdyn --version)
+if(NOT last_output MATCHES "^cdyn [0-9]+\\.[0-9]+\\.[0-9]+")
+  message(FATAL_ERROR "the installed cdyn printed '${last_output}' for --version")
+endif()
+execute_process(COMMAND ${prefix}/bin/cdyn run --quiet --set mesh.n=4 --set time.T=0.01 --set output.plots=false
+                        --out ${WORK_DIR}/installed_run
+                WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK_DIR}/installed_run/summary.json)
+  message(FATAL_ERROR "the installed cdyn did not run the default scene (${rc}): ${err}")
+endif()
 
 run("configuring the outside project" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/outside -B ${WORK_DIR}/build
     -DCMAKE_BUILD_TYPE=${CONFIG} -DCMAKE_PREFIX_PATH=${prefix} "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}")
