@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -33,6 +34,7 @@
 #include "cdyn/post/contact_force.hpp"
 #include "cdyn/post/contact_pressure.hpp"
 #include "cdyn/post/linear_momentum.hpp"
+#include "cdyn/problems/data_work.hpp"
 #include "commands.hpp"
 #include "contact_history.hpp"
 #include "derived_fields.hpp"
@@ -139,14 +141,16 @@ class History {
         csv_ << ",penetration";
       }
     }
+    if (has_data_in_t(sim.problem)) csv_ << ",data_work";
     for (const auto& pr : sim.probes)
       for (const std::string& c : probe_columns(sim, pr)) csv_ << "," << c;
     csv_ << "\n";
   }
 
   // reaction_xy: the step's reaction in (x, y) (post/contact_force.hpp).
+  // data_work: the work of the data in t on the body since t = 0 (a column only then).
   void record(int step, const State& s, const StepStats& st, const Energy& E, const Eigen::VectorXd& rate,
-              const Eigen::VectorXd& reaction_xy) {
+              const Eigen::VectorXd& reaction_xy, double data_work) {
     csv_ << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
          << st.qp_iterations << "," << st.qp_seconds;
     const ConstrainedProblem& p = sim_.problem;
@@ -163,6 +167,7 @@ class History {
         csv_ << "," << depth;
       }
     }
+    if (has_data_in_t(p)) csv_ << "," << data_work;
     for (const auto& pr : sim_.probes)
       for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv_ << "," << v;
     csv_ << "\n";
@@ -214,7 +219,7 @@ int cmd_run(const RunOptions& opt) {
   const bool make_plots = sim.spec.output.plots;
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
-  const std::vector<std::string> warnings = run_warnings(sim);
+  std::vector<std::string> warnings = run_warnings(sim);
   if (opt.warnings)
     for (const std::string& w : warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
 
@@ -238,11 +243,20 @@ int cmd_run(const RunOptions& opt) {
   Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
   Eigen::VectorXd force_xy;  // the last step's reaction in (x, y), for every output
 
+  // The work of the data in t (a load L(t), a moving obstacle) since t = 0: the scheme's
+  // own balance when it keeps one exactly (discrete_gradient), else the midpoint
+  // quadrature of problems/data_work.hpp; J is balanced against it.
+  double data_work = 0.0;
+  auto add_data_work = [&](const StepStats& st, double t_before, const Eigen::VectorXd& U_before) {
+    if (!has_data_in_t(p)) return;
+    data_work += st.external_work ? *st.external_work
+                                  : data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), s.reaction);
+  };
   auto record = [&](int step, const StepStats& st, const Energy& E) {
     E_final = E.total();
-    drift.observe(E);
+    drift.observe(E, data_work);
     force_xy = reaction_xy(p, s.reaction);
-    history.record(step, s, st, E, rate, force_xy);
+    history.record(step, s, st, E, rate, force_xy, data_work);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -267,6 +281,7 @@ int cmd_run(const RunOptions& opt) {
   InterruptGuard guard;
   for (int n = 1; n <= sim.n_steps && !interrupted(); ++n) {
     const Eigen::VectorXd U_old = s.U;
+    const double t_old = s.t;
     StepStats st;
     Energy E;
     // Everything non-finite born here is a numerical failure, not bad input: the data
@@ -302,6 +317,7 @@ int cmd_run(const RunOptions& opt) {
     max_active = std::max(max_active, st.active);
     max_kkt = std::max(max_kkt, st.kkt_residual);
     max_violation = std::max(max_violation, p.max_violation(s.U, s.t));
+    add_data_work(st, t_old, U_old);
     record(n, st, E);
     steps_done = n;
     write_fields_at(n);
@@ -343,6 +359,7 @@ int cmd_run(const RunOptions& opt) {
   j["E_rel_drift"] = drift.rel();
   j["E_abs_drift"] = drift.abs();
   j["E_scale"] = drift.scale();
+  if (has_data_in_t(p)) j["data_work"] = data_work;  // the drift is then of J − J0 − data_work
   j["max_violation"] = max_violation;
   j["max_active"] = max_active;
   j["wall_s"] = wall;
@@ -358,6 +375,11 @@ int cmd_run(const RunOptions& opt) {
   if (sim.has_obstacle) {
     j["impact"] = history.impact();
     j["max_penetration"] = history.max_penetration();  // the whole boundary against every obstacle
+    const std::string w = penetration_warning(sim, history.max_penetration(), max_violation);
+    if (!w.empty()) {
+      warnings.push_back(w);
+      if (opt.warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
+    }
   }
   j["wellposed"] = wellposedness_summary(sim);
   const SceneSpec::Units& units = sim.spec.units;
@@ -375,12 +397,17 @@ int cmd_run(const RunOptions& opt) {
     const std::string label = partial ? "INTERRUPTED after step " + std::to_string(steps_done) + " of " +
                                              std::to_string(sim.n_steps) + " (partial results)"
                                        : "";
-    char energy[200];
+    char energy[260];
+    const bool worked = has_data_in_t(p);  // J balanced against the data's work W
+    const char* balance = worked ? "J - J0 - W" : "J - J0";
     if (drift.scale_is_J0())
-      std::snprintf(energy, sizeof energy, "max |J - J0|/|J0| = %.3e", drift.rel());
+      std::snprintf(energy, sizeof energy, "max |%s|/|J0| = %.3e", balance, drift.rel());
     else  // J0 = 0 (a start from rest) or small against the energies exchanged
-      std::snprintf(energy, sizeof energy, "max |J - J0| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
-                    drift.abs(), drift.rel(), drift.scale());
+      std::snprintf(energy, sizeof energy, "max |%s| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
+                    balance, drift.abs(), drift.rel(), drift.scale());
+    if (worked)
+      std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy),
+                    " with W = %.6g the work of the data in t", data_work);
     std::printf(
         "cdyn run %s: %s, %s, %s, solver %s.%s%s\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
         "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "

@@ -19,11 +19,15 @@ namespace cdyn::app {
 // From rest (J0 = 0: a drop, a load applied from t > 0) the kinetic and potential
 // energies mirror each other, E_kin ≈ −E_pot, and E_scale is the energy they exchange.
 // It vanishes only when E_kin = E_pot = 0 at every step, where J ≡ 0: rel() is then 0.
+//
+// With data in t the energy is balanced against the work W the data did on the body
+// (problems/data_work.hpp): the drift is then max |J − J0 − W|, the energy the scheme
+// made or lost on its own.
 class EnergyDrift {
  public:
   explicit EnergyDrift(const Energy& E0) : J0_(E0.total()) { observe(E0); }
-  void observe(const Energy& E) {
-    abs_ = std::max(abs_, std::abs(E.total() - J0_));
+  void observe(const Energy& E, double work = 0.0) {
+    abs_ = std::max(abs_, std::abs(E.total() - J0_ - work));
     half_sum_ = std::max(half_sum_, 0.5 * (std::abs(E.kinetic) + std::abs(E.potential)));
   }
   double abs() const { return abs_; }
