@@ -131,7 +131,7 @@ class History {
   History(const Simulation& sim, const std::filesystem::path& out)
       : sim_(sim), file_(out / "history.csv"), csv_(file_.stream()) {
     csv_.precision(17);
-    csv_ << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s";
+    csv_ << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s,step_s";
     if (sim.components == 2) {
       momentum_.emplace(sim.problem);
       csv_ << ",contact_force,px,py";
@@ -149,10 +149,10 @@ class History {
 
   // reaction_xy: the step's reaction in (x, y) (post/contact_force.hpp).
   // data_work: the work of the data in t on the body since t = 0 (a column only then).
-  void record(int step, const State& s, const StepStats& st, const Energy& E, const Eigen::VectorXd& rate,
-              const Eigen::VectorXd& reaction_xy, double data_work) {
+  void record(int step, const State& s, const StepStats& st, double step_seconds, const Energy& E,
+              const Eigen::VectorXd& rate, const Eigen::VectorXd& reaction_xy, double data_work) {
     csv_ << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
-         << st.qp_iterations << "," << st.qp_seconds;
+         << st.qp_iterations << "," << st.qp_seconds << "," << step_seconds;
     const ConstrainedProblem& p = sim_.problem;
     const Eigen::VectorXd U_full = p.full(s.U);
     if (momentum_) {
@@ -252,11 +252,11 @@ int cmd_run(const RunOptions& opt) {
     data_work += st.external_work ? *st.external_work
                                   : data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), s.reaction);
   };
-  auto record = [&](int step, const StepStats& st, const Energy& E) {
+  auto record = [&](int step, const StepStats& st, double step_seconds, const Energy& E) {
     E_final = E.total();
     drift.observe(E, data_work);
     force_xy = reaction_xy(p, s.reaction);
-    history.record(step, s, st, E, rate, force_xy, data_work);
+    history.record(step, s, st, step_seconds, E, rate, force_xy, data_work);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -272,7 +272,7 @@ int cmd_run(const RunOptions& opt) {
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
-  record(0, StepStats{}, E_initial);
+  record(0, StepStats{}, 0.0, E_initial);
   write_fields_at(0);
 
   int steps_done = 0;
@@ -283,6 +283,7 @@ int cmd_run(const RunOptions& opt) {
     const Eigen::VectorXd U_old = s.U;
     const double t_old = s.t;
     StepStats st;
+    double step_seconds = 0.0;  // the scheme's step: the QP and everything around it
     Energy E;
     // Everything non-finite born here is a numerical failure, not bad input: the data
     // were checked before the loop, so a step QP refusing an infinite r (its input
@@ -296,7 +297,9 @@ int cmd_run(const RunOptions& opt) {
                            (out / "history.csv").string());
     };
     try {
+      const auto ts = Clock::now();
       st = sim.scheme->step(s);
+      step_seconds = seconds_since(ts);
       if (!s.U.allFinite() || !s.V.allFinite()) throw NumericalError("the solution is not finite (NaN or Inf)");
       E = sim.scheme->energy(s);
       if (!std::isfinite(E.total())) throw NumericalError("the energy is not finite (the solution blew up)");
@@ -318,7 +321,7 @@ int cmd_run(const RunOptions& opt) {
     max_kkt = std::max(max_kkt, st.kkt_residual);
     max_violation = std::max(max_violation, p.max_violation(s.U, s.t));
     add_data_work(st, t_old, U_old);
-    record(n, st, E);
+    record(n, st, step_seconds, E);
     steps_done = n;
     write_fields_at(n);
     if (show_progress && (n % 10 == 0 || n == sim.n_steps))

@@ -35,7 +35,7 @@ const std::set<std::string> kKnownKeys = {
     "time.scheme",    "time.dt",        "time.T",
     "time.beta",      "time.gamma",     "time.restitution", "time.reconstruct", "time.energy_tol",
     "solver.name",    "solver.tol",     "solver.max_iterations",
-    "solver.condense", "solver.cg_iterations",
+    "solver.condense", "solver.cg_iterations", "solver.free_block",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
     "output.stress",
