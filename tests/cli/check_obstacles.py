@@ -49,7 +49,7 @@ import shutil
 import subprocess
 import sys
 
-from cli_helpers import check, failures, read_csv
+from cli_helpers import check, check_hertz_zone, failures, hertz_pressure_deviation, read_csv
 
 cdyn, src, work = sys.argv[1:4]
 scenes = os.path.join(src, "data", "scenes")
@@ -90,14 +90,9 @@ normals = [((r["x"] - centre[0]) / math.hypot(r["x"] - centre[0], r["y"] - centr
 fx = sum(r["force"] * n[0] for r, n in zip(loaded, normals))
 fy = sum(r["force"] * n[1] for r, n in zip(loaded, normals))
 check(abs(fy - P) < 1e-6 * P and abs(fx) < 1e-6 * P, f"cylinder: resultant ({fx:.2e}, {fy:.9g}) = (0, P = {P})")
-for side in (1, -1):
-    zone = sorted((r for r in loaded if side * r["x"] >= 0), key=lambda r: side * r["x"])
-    inside = max(side * r["x"] for r in zone if r["force"] > 1e-9 * P)
-    outside = min(side * r["x"] for r in zone if side * r["x"] > inside)
-    check(inside <= a <= outside, f"cylinder side {side:+d}: a = {a:.4f} mm in [{inside:.4f}, {outside:.4f}]")
-p0 = 2 * P / (math.pi * a)
+check_hertz_zone("cylinder", loaded, a, P)
 interior = [r for r in loaded if abs(r["x"]) < a]
-dev = max(abs(r["pressure"] - p0 * math.sqrt(max(a * a - r["x"] ** 2, 0.0)) / a) for r in interior) / p0
+dev, p0 = hertz_pressure_deviation(interior, a, P)
 check(len(interior) >= 9 and dev < 0.03,
       f"cylinder: pressure = Hertz's to {dev:.1%} of p0 = {p0:.4g} N/mm² at {len(interior)} vertices")
 released = rows_at(c, int(h[-1]["step"]))
