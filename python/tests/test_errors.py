@@ -69,7 +69,7 @@ def test_a_blow_up_has_the_command_lines_message(cli, scene, tmp_path, monkeypat
 
 
 def test_warnings_have_the_command_lines_text(cli, tmp_path):
-    sets = ["mesh.n=4", "time.T=0.0105", "output.fields=false"]
+    sets = ["mesh.n=4", "time.T=0.0105", "output.fields=false", "output.plots=false"]
     _, _, err = cli("run", *sum((["--set", s] for s in sets), []), "--out", tmp_path / "cli")
     with pytest.warns(RuntimeWarning) as w:
         r = cdyn.run(set=sets, out=tmp_path / "py")
