@@ -55,20 +55,8 @@ void bind_qp(py::module_& m) {
       .def_readwrite("upper", &BoundQP::upper)
       .def_property_readonly("size", &BoundQP::size);
 
-  py::class_<QPOptions>(m, "QPOptions", "The step solvers' options (qp/bound_qp.hpp)")
-      .def(py::init([](double tol, int max_iterations, bool throw_on_failure, double pgs_omega,
-                       const std::string& nlopt_algorithm, bool ipopt_crossover) {
-             QPOptions o;
-             o.tol = tol;
-             o.max_iterations = max_iterations;
-             o.throw_on_failure = throw_on_failure;
-             o.pgs_omega = pgs_omega;
-             o.nlopt_algorithm = nlopt_algorithm;
-             o.ipopt_crossover = ipopt_crossover;
-             return o;
-           }),
-           "tol"_a = 1e-10, "max_iterations"_a = 0, "throw_on_failure"_a = true, "pgs_omega"_a = 1.0,
-           "nlopt_algorithm"_a = "LD_LBFGS", "ipopt_crossover"_a = true)
+  py::class_<QPOptions>(m, "QPOptions", "The step solvers' options (qp/bound_qp.hpp), e.g. QPOptions(tol=1e-12)")
+      .def(init_from_keywords<QPOptions>())
       .def_readwrite("tol", &QPOptions::tol)
       .def_readwrite("max_iterations", &QPOptions::max_iterations)
       .def_readwrite("throw_on_failure", &QPOptions::throw_on_failure)

@@ -53,13 +53,9 @@ void bind_schemes(py::module_& m) {
       .def_readonly("reconstruction_kkt", &StepStats::reconstruction_kkt)
       .def_readonly("energy_iterations", &StepStats::energy_iterations);
 
-  py::class_<SchemeParameters>(m, "SchemeParameters", "The parameters of the schemes that have some")
-      .def(py::init([](double beta, double gamma, double restitution, bool condense, bool reconstruct, double tol,
-                       double energy_tol) {
-             return SchemeParameters{beta, gamma, restitution, condense, reconstruct, tol, energy_tol};
-           }),
-           "beta"_a = 0.25, "gamma"_a = 0.5, "restitution"_a = 0.0, "condense"_a = true, "reconstruct"_a = true,
-           "tol"_a = 1e-10, "energy_tol"_a = 1e-12)
+  py::class_<SchemeParameters>(m, "SchemeParameters",
+                               "The parameters of the schemes that have some, e.g. SchemeParameters(restitution=0.5)")
+      .def(init_from_keywords<SchemeParameters>())
       .def_readwrite("beta", &SchemeParameters::beta)
       .def_readwrite("gamma", &SchemeParameters::gamma)
       .def_readwrite("restitution", &SchemeParameters::restitution)

@@ -62,6 +62,21 @@ std::vector<Field> to_fields(const py::object& value, const std::string& name);
 // numbers never, callables by default not (the caller says so).
 bool mentions_time(const py::object& value);
 
+// A struct of options (QPOptions, SchemeParameters) from keyword arguments, each
+// setting the field of its name (bound with def_readwrite) on the C++ defaults:
+// QPOptions(tol=1e-12).  An unknown name is a TypeError naming it.
+template <class T>
+auto init_from_keywords() {
+  return py::init([](const py::kwargs& fields) {
+    py::object o = py::cast(T());
+    for (const auto& [name, value] : fields) {
+      if (!py::hasattr(o, name)) throw py::type_error("unknown option '" + py::str(name).cast<std::string>() + "'");
+      py::setattr(o, name, value);
+    }
+    return o.cast<T>();
+  });
+}
+
 // Boundary parts given by name or by index ("all": every part and the untagged facets).
 std::vector<int> part_indices(const Mesh& mesh, const py::object& parts);
 

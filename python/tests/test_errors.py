@@ -102,6 +102,8 @@ def test_kernel_errors():
         cdyn.DirichletLift(p.W, ["no_such_part"])
     with pytest.raises(cdyn.InputError, match="no_such.geo"):
         cdyn.read_mesh("no_such.geo")
+    with pytest.raises(TypeError, match="unknown option 'tl'"):
+        cdyn.QPOptions(tl=1e-12)
 
 
 def test_a_qp_that_does_not_converge_is_a_numerical_error():
