@@ -212,7 +212,7 @@ std::vector<std::string> command_line_paths(std::vector<std::string> sets) {
 }
 
 int cmd_run(const RunOptions& opt) {
-  Scene scene = Scene::load(opt.scene);
+  Scene scene = Scene::load(opt.scene, opt.scene_text);
   for (const auto& a : command_line_paths(opt.sets)) scene.set(a);
   Simulation sim = make_simulation(scene);
   const bool write_fields = sim.spec.output.fields;

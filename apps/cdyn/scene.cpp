@@ -120,6 +120,10 @@ Scene Scene::load(const std::string& path) {
   return from_string(text.str(), path);
 }
 
+Scene Scene::load(const std::string& path, const std::string& text) {
+  return text.empty() ? load(path) : from_string(text, path);
+}
+
 void Scene::validate(const toml::table& t, const std::string& prefix) const {
   for (const auto& [k, node] : t) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
