@@ -346,7 +346,7 @@ TEST(GmshMeshBadInput, GeoSyntaxError) {
   const fs::path dir = scratch_dir();
   expect_input_error(write_text(dir / "syntax.geo", "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0 0.1};\n"),
                      "syntax error");
-  expect_input_error(write_text(dir / "empty.geo", "// nothing\n"), "no curve or surface");
+  expect_input_error(write_text(dir / "empty.geo", "// nothing\n"), "no curve, surface or volume");
 }
 
 TEST(GmshMeshBadInput, UnsupportedElementsAndFiles) {
