@@ -169,3 +169,36 @@ TEST(Mesh, CheckRejectsInvertedTetrahedra) {
   std::swap(m.cells[4][2], m.cells[4][3]);
   EXPECT_THROW(m.check("test"), InputError);
 }
+
+TEST(FESpace, DofCountsOnTetrahedra) {
+  const int n = 3;
+  const Mesh m = unit_cube_mesh(n);
+  const int nv = m.n_vertices(), nc = m.n_cells();
+  // edges of the Kuhn cube: 3n(n+1)² along the axes, 3n²(n+1) face diagonals, n³ main
+  // diagonals
+  const int ne = 3 * n * (n + 1) * (n + 1) + 3 * n * n * (n + 1) + n * n * n;
+  EXPECT_EQ(FESpace(m, Element::P0).n_dofs(), nc);
+  EXPECT_EQ(FESpace(m, Element::P1).n_dofs(), nv);
+  EXPECT_EQ(FESpace(m, Element::P1Bubble).n_dofs(), nv + nc);
+  EXPECT_EQ(FESpace(m, Element::P2).n_dofs(), nv + ne);
+  const FESpace V(m, Element::P2, 3);
+  EXPECT_EQ(V.n_dofs(), 3 * (nv + ne));
+  EXPECT_EQ(V.vertex_dof(7, 2), 23);
+  EXPECT_THROW(FESpace(m, Element::P1, 4), InputError);
+  // P2 dofs on the bottom face: the (2n + 1)² nodes of a P2 grid of the square.
+  EXPECT_EQ(FESpace(m, Element::P2).boundary_scalar_dofs({m.part_index("bottom")}).size(),
+            static_cast<std::size_t>((2 * n + 1) * (2 * n + 1)));
+  // Interpolants reproduce their polynomial spaces exactly: a quadratic in P2, an
+  // affine field in P1+ (zero bubble coefficients), at a point of every cell.
+  const auto quad = [](const Point& p, double) { return 1 + 2 * p.x - p.y + p.x * p.z + 3 * p.y * p.y - p.y * p.z; };
+  const auto lin = [](const Point& p, double) { return 0.5 - p.x + 2 * p.y - 3 * p.z; };
+  const FESpace P2(m, Element::P2), P1b(m, Element::P1Bubble);
+  const Eigen::VectorXd U2 = P2.interpolate(quad), Ub = P1b.interpolate(lin);
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const cdyn::RefPoint xi{0.2, 0.3, 0.1};
+    const Point x = CellGeometry(m, c).map(xi);
+    EXPECT_NEAR(P2.value_in_cell(U2, c, xi), quad(x, 0), 1e-14);
+    EXPECT_NEAR(P1b.value_in_cell(Ub, c, xi), lin(x, 0), 1e-14);
+    EXPECT_NEAR(Ub[P1b.cell_dofs(c)[4]], 0.0, 1e-15);
+  }
+}
