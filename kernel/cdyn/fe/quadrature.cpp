@@ -28,7 +28,7 @@ QuadratureRule gauss_legendre(int n) {
 
 QuadratureRule grundmann_moller(int s) {
   if (s < 0) throw std::invalid_argument("grundmann_moller: s must be >= 0");
-  // Grundmann & Möller (1978), Theorem 4, on the n-simplex of volume 1/n! (n = 3):
+  // Grundmann & Möller (1978), on the n-simplex of volume 1/n! (n = 3):
   //   ∫ f ≈ Σ_{i=0..s} w_i Σ_{|β| = s − i} f(λ = (2β + 1)/(d + n − 2i)),
   //   w_i = (−1)^i 2^{−2s} (d + n − 2i)^d / (i! (d + n − i)!),   d = 2s + 1,
   // β ∈ N^{n+1} the multi-indices of sum s − i and λ the barycentric coordinates of the

@@ -17,7 +17,7 @@
 //    (s(1 − t), t), Jacobian 1 − t;
 //  - on the tetrahedron, the Grundmann–Möller rules (A. Grundmann, H. M. Möller,
 //    "Invariant integration formulas for the n-simplex by combinatorial methods",
-//    SIAM J. Numer. Anal. 15 (1978) 282–290, Theorem 4): for every odd degree 2s + 1 a
+//    SIAM J. Numer. Anal. 15 (1978) 282–290): for every odd degree 2s + 1 a
 //    closed formula, symmetric under the permutations of the vertices, with all points
 //    inside the cell and C(s + 4, 4) of them (1, 5, 15, 35, 70 for s = 0..4: 70 for the
 //    degree 8 of the bubble mass, where a collapsed product needs 150).  Some weights
