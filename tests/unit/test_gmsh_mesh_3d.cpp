@@ -22,41 +22,18 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
 #include "cdyn/mesh/mesh.hpp"
+#include "gmsh_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using cdyn::Mesh;
+using cdyn::testing::expect_input_error;
+using cdyn::testing::part_measure;
+using cdyn::testing::scratch_dir;
+using cdyn::testing::write_text;
 
 namespace {
 
 std::string box_geo() { return std::string(CDYN_SOURCE_DIR) + "/data/geo/box.geo"; }
-
-fs::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::path(CDYN_BINARY_DIR) / "test_gmsh_mesh_3d_tmp" / (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-  return path.string();
-}
-
-double triangle_area(const Mesh& m, const cdyn::BoundaryFacet& f) {
-  const auto &a = m.vertices[f.vertices[0]], &b = m.vertices[f.vertices[1]], &c = m.vertices[f.vertices[2]];
-  const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, w[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
-  return 0.5 * std::hypot(u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]);
-}
-
-// Total area of the facets of part `part` (-1: untagged facets).
-double part_area(const Mesh& m, int part) {
-  double s = 0.0;
-  for (const auto& f : m.boundary)
-    if (f.part == part) s += triangle_area(m, f);
-  return s;
-}
 
 // V − E + F − T over the tetrahedra's vertices, edges, triangles and cells.
 long euler_characteristic(const Mesh& m) {
@@ -74,19 +51,6 @@ long euler_characteristic(const Mesh& m) {
   return m.n_vertices() - static_cast<long>(edges.size()) + static_cast<long>(facets.size()) - m.n_cells();
 }
 
-void expect_input_error(const std::string& path, const std::string& expected) {
-  try {
-    (void)cdyn::read_mesh(path);
-    ADD_FAILURE() << path << ": no InputError thrown";
-  } catch (const cdyn::InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    EXPECT_NE(what.find(expected), std::string::npos) << what;
-    std::cout << "  [message] " << what << "\n";
-  }
-}
-
 }  // namespace
 
 // The box [0, 2] × [0, 1] × [0, 1] of data/geo/box.geo: volume 2, faces bottom and top
@@ -99,11 +63,11 @@ TEST(GmshMesh3D, BoxFromGeo) {
   ASSERT_EQ(m.part_names, (std::vector<std::string>{"bottom", "top", "left", "sides"}));
   ASSERT_EQ(m.region_names, (std::vector<std::string>{"solid"}));
   ASSERT_EQ(static_cast<int>(m.cell_region.size()), m.n_cells());
-  EXPECT_NEAR(part_area(m, m.part_index("bottom")), 2.0, 1e-13);
-  EXPECT_NEAR(part_area(m, m.part_index("top")), 2.0, 1e-13);
-  EXPECT_NEAR(part_area(m, m.part_index("left")), 1.0, 1e-13);
-  EXPECT_NEAR(part_area(m, m.part_index("sides")), 5.0, 1e-13);
-  EXPECT_EQ(part_area(m, -1), 0.0) << "the four groups cover the whole boundary";
+  EXPECT_NEAR(part_measure(m, m.part_index("bottom")), 2.0, 1e-13);
+  EXPECT_NEAR(part_measure(m, m.part_index("top")), 2.0, 1e-13);
+  EXPECT_NEAR(part_measure(m, m.part_index("left")), 1.0, 1e-13);
+  EXPECT_NEAR(part_measure(m, m.part_index("sides")), 5.0, 1e-13);
+  EXPECT_EQ(part_measure(m, -1), 0.0) << "the four groups cover the whole boundary";
   for (int v : m.part_vertices({m.part_index("bottom")})) EXPECT_EQ(m.vertices[v].z, 0.0);
   for (int v : m.part_vertices({m.part_index("top")})) EXPECT_NEAR(m.vertices[v].z, 1.0, 1e-15);
   for (int v : m.part_vertices({m.part_index("left")})) EXPECT_EQ(m.vertices[v].x, 0.0);
@@ -178,7 +142,7 @@ $EndElements
   EXPECT_EQ(m.part_names, (std::vector<std::string>{"floor"}));
   EXPECT_TRUE(m.region_names.empty());
   EXPECT_EQ(m.boundary.size(), 6u);  // 8 faces, the shared one is interior: 1 tagged + 5 untagged
-  EXPECT_NEAR(part_area(m, m.part_index("floor")), 0.5, 1e-16);
+  EXPECT_NEAR(part_measure(m, m.part_index("floor")), 0.5, 1e-16);
 }
 
 TEST(GmshMesh3DBadInput, UnsupportedElements) {

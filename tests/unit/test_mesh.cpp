@@ -14,6 +14,23 @@
 
 using namespace cdyn;
 
+namespace {
+
+// P2 reproduces the quadratic `quad` and P1+ the affine `lin` with zero bubble
+// coefficients, at the reference point xi of every cell.
+void expect_exact_interpolants(const Mesh& m, const Field& quad, const Field& lin, const RefPoint& xi) {
+  const FESpace P2(m, Element::P2), P1b(m, Element::P1Bubble);
+  const Eigen::VectorXd U2 = P2.interpolate(quad), Ub = P1b.interpolate(lin);
+  for (int c = 0; c < m.n_cells(); ++c) {
+    const Point x = CellGeometry(m, c).map(xi);
+    EXPECT_NEAR(P2.value_in_cell(U2, c, xi), quad(x, 0.0), 1e-14);
+    EXPECT_NEAR(P1b.value_in_cell(Ub, c, xi), lin(x, 0.0), 1e-14);
+    EXPECT_NEAR(Ub[P1b.cell_dofs(c)[m.dim + 1]], 0.0, 1e-15);
+  }
+}
+
+}  // namespace
+
 TEST(Mesh, UnitSquareCountsAndParts) {
   const int n = 5;
   const Mesh m = unit_square_mesh(n);
@@ -53,9 +70,11 @@ TEST(Mesh, IntervalAndUnknownPart) {
 }
 
 TEST(Mesh, CheckRejectsInvertedCells) {
-  Mesh m = unit_square_mesh(2);
+  Mesh m = unit_square_mesh(2), cube = unit_cube_mesh(1);
   std::swap(m.cells[3][1], m.cells[3][2]);
+  std::swap(cube.cells[4][2], cube.cells[4][3]);
   EXPECT_THROW(m.check("test"), InputError);
+  EXPECT_THROW(cube.check("test"), InputError);
 }
 
 TEST(FESpace, DofCountsAndVertexDofs) {
@@ -73,19 +92,9 @@ TEST(FESpace, DofCountsAndVertexDofs) {
   EXPECT_EQ(V.vertex_dof(7, 1), 15);
   // Boundary dofs of P2 on the bottom: n + 1 vertices and n edge midpoints.
   EXPECT_EQ(FESpace(m, Element::P2).boundary_scalar_dofs({m.part_index("bottom")}).size(), 2u * n + 1);
-  // Interpolants reproduce their polynomial spaces exactly: a quadratic in P2, a
-  // linear field in P1+ (zero bubble coefficients), at any point of any cell.
-  const auto quad = [](double x, double y, double) { return 1 + 2 * x - y + x * y + 3 * y * y; };
-  const auto lin = [](double x, double y, double) { return 0.5 - x + 2 * y; };
-  const FESpace P2(m, Element::P2), P1b(m, Element::P1Bubble);
-  const Eigen::VectorXd U2 = P2.interpolate(quad), Ub = P1b.interpolate(lin);
-  for (int c = 0; c < m.n_cells(); ++c) {
-    const cdyn::RefPoint xi{0.2, 0.3, 0.0};
-    const Point x = CellGeometry(m, c).map(xi);
-    EXPECT_NEAR(P2.value_in_cell(U2, c, xi), quad(x.x, x.y, 0), 1e-14);
-    EXPECT_NEAR(P1b.value_in_cell(Ub, c, xi), lin(x.x, x.y, 0), 1e-14);
-    EXPECT_NEAR(Ub[P1b.cell_dofs(c)[3]], 0.0, 1e-15);
-  }
+  // Interpolants reproduce their polynomial spaces exactly.
+  expect_exact_interpolants(m, [](double x, double y, double) { return 1 + 2 * x - y + x * y + 3 * y * y; },
+                            [](double x, double y, double) { return 0.5 - x + 2 * y; }, {0.2, 0.3, 0.0});
 }
 
 // The unit cube split into 6n³ Kuhn tetrahedra: counts, volumes, the six parts, the
@@ -164,12 +173,6 @@ TEST(Mesh, UnitCubeIsAConformingKuhnSplit) {
   EXPECT_THROW(unit_cube_mesh(711), InputError);
 }
 
-TEST(Mesh, CheckRejectsInvertedTetrahedra) {
-  Mesh m = unit_cube_mesh(1);
-  std::swap(m.cells[4][2], m.cells[4][3]);
-  EXPECT_THROW(m.check("test"), InputError);
-}
-
 TEST(FESpace, DofCountsOnTetrahedra) {
   const int n = 3;
   const Mesh m = unit_cube_mesh(n);
@@ -188,17 +191,8 @@ TEST(FESpace, DofCountsOnTetrahedra) {
   // P2 dofs on the bottom face: the (2n + 1)² nodes of a P2 grid of the square.
   EXPECT_EQ(FESpace(m, Element::P2).boundary_scalar_dofs({m.part_index("bottom")}).size(),
             static_cast<std::size_t>((2 * n + 1) * (2 * n + 1)));
-  // Interpolants reproduce their polynomial spaces exactly: a quadratic in P2, an
-  // affine field in P1+ (zero bubble coefficients), at a point of every cell.
-  const auto quad = [](const Point& p, double) { return 1 + 2 * p.x - p.y + p.x * p.z + 3 * p.y * p.y - p.y * p.z; };
-  const auto lin = [](const Point& p, double) { return 0.5 - p.x + 2 * p.y - 3 * p.z; };
-  const FESpace P2(m, Element::P2), P1b(m, Element::P1Bubble);
-  const Eigen::VectorXd U2 = P2.interpolate(quad), Ub = P1b.interpolate(lin);
-  for (int c = 0; c < m.n_cells(); ++c) {
-    const cdyn::RefPoint xi{0.2, 0.3, 0.1};
-    const Point x = CellGeometry(m, c).map(xi);
-    EXPECT_NEAR(P2.value_in_cell(U2, c, xi), quad(x, 0), 1e-14);
-    EXPECT_NEAR(P1b.value_in_cell(Ub, c, xi), lin(x, 0), 1e-14);
-    EXPECT_NEAR(Ub[P1b.cell_dofs(c)[4]], 0.0, 1e-15);
-  }
+  // Interpolants reproduce their polynomial spaces exactly.
+  expect_exact_interpolants(
+      m, [](const Point& p, double) { return 1 + 2 * p.x - p.y + p.x * p.z + 3 * p.y * p.y - p.y * p.z; },
+      [](const Point& p, double) { return 0.5 - p.x + 2 * p.y - 3 * p.z; }, {0.2, 0.3, 0.1});
 }
