@@ -19,7 +19,9 @@
 #include <cstdio>
 
 #include "cdyn/fe/assembly.hpp"
+#include "cdyn/base/error.hpp"
 #include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/fe/norms.hpp"
 #include "cdyn/gmsh_mesh.hpp"
 
 using namespace cdyn;
@@ -260,5 +262,12 @@ TEST(Assembly3D, PatchTests) {
   }
   const FESpace P2(m, Element::P2);
   EXPECT_LE(solve(P2, assemble_laplace(P2), assemble_load(P2, two), {quadratic}), 1e-13);
+  // The L² error of an exact interpolant vanishes (the rule of degree 2·2 + 4 = 8 on
+  // every tetrahedron); the H¹ error takes a planar gradient and refuses a 3D mesh.
+  EXPECT_LE(l2_error(P2, P2.interpolate(quadratic), quadratic), 1e-14);
+  const FESpace P1(m, Element::P1);
+  EXPECT_GT(l2_error(P1, P1.interpolate(quadratic), quadratic), 1e-3);
+  EXPECT_THROW(h1_seminorm_error(P1, P1.interpolate(affine), [](double, double, double) { return std::array<double, 2>{}; }),
+               InputError);
   std::printf("  patch tests: largest nodal error %.1e\n", worst);
 }
