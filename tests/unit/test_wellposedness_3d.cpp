@@ -69,3 +69,31 @@ TEST(Wellposedness3D, PairsOnTheUnitCube) {
   }
   std::printf("  sparse against dense: %.1e relative\n", worst);
 }
+
+// Three components: the constraint rows are n·u at the contact vertices (n_z included),
+// and on the cube held at its top face with Γ_C its bottom face, the pairs decide as in
+// plane strain: P1+/P0 satisfies (12), P1/P1 does not (Ker B = {0}).
+TEST(Wellposedness3D, ThreeComponentsOnAContactFace) {
+  const Mesh mesh = unit_cube_mesh(2);
+  const FESpace W(mesh, Element::P1, 3);
+  const DirichletLift bc(W, {mesh.part_index("top")});
+  const std::vector<int> bottom = mesh.part_vertices({mesh.part_index("bottom")});
+  const SparseMatrix G = vertex_constraint_matrix(W, bc, bottom, Point{0.6, 0.0, -0.8});
+  ASSERT_EQ(G.rows(), static_cast<int>(bottom.size()));
+  for (std::size_t r = 0; r < bottom.size(); ++r) {
+    EXPECT_EQ(G.coeff(r, bc.free_index(W.vertex_dof(bottom[r], 0))), 0.6);
+    EXPECT_EQ(G.coeff(r, bc.free_index(W.vertex_dof(bottom[r], 2))), -0.8);
+  }
+  EXPECT_EQ(G.nonZeros(), 2 * G.rows());  // no y entry
+  WellPosednessSetup setup;
+  setup.dirichlet_parts = {mesh.part_index("top")};
+  setup.constrained_vertices = bottom;
+  setup.components = 3;
+  setup.normal = Point{0.0, 0.0, -1.0};
+  const WellPosedness p = condition12_on(mesh, MassSpec::parse("P1+/P0"), setup);
+  const WellPosedness q = condition12_on(mesh, MassSpec::parse("P1/P1"), setup);
+  std::printf("  three components, Γ_C the bottom face: P1+/P0 beta %.4f, P1/P1 beta %.4f\n", p.beta, q.beta);
+  EXPECT_EQ(p.n_g, 9);
+  EXPECT_TRUE(p.satisfied);
+  EXPECT_FALSE(q.satisfied);
+}
