@@ -32,7 +32,7 @@ bool too_large(const app::Scene& s) {
     if (kind == "gmsh") return true;
     if (!s.has("mesh.n")) return false;
     const int n = s.integer("mesh.n");
-    return n > (kind == "interval" ? kMaxIntervalCells : kMaxSquareCells);
+    return n > (kind == "interval" ? kMaxIntervalCells : kind == "unit_cube" ? kMaxCubeCells : kMaxSquareCells);
   } catch (const InputError&) {
     return false;  // make_simulation reports the same bad key
   }
@@ -53,7 +53,10 @@ void check_accepted(const app::Scene& scene, const app::Simulation& sim) {
   // mesh.n as written (64-bit), read back from the scene's own dump
   const toml::table table = toml::parse(scene.dump());
   const auto n = table.at_path("mesh.n").value_exact<std::int64_t>();
-  const std::int64_t per_side = sim.mesh->dim == 1 ? sim.mesh->n_cells() : std::llround(std::sqrt(sim.mesh->n_cells() / 2.0));
+  const int cells = sim.mesh->n_cells();
+  const std::int64_t per_side = sim.mesh->dim == 1   ? cells
+                                : sim.mesh->dim == 2 ? std::llround(std::sqrt(cells / 2.0))
+                                                     : std::llround(std::cbrt(cells / 6.0));
   if (n && scene.string("mesh.kind") != "gmsh" && *n != per_side)
     throw std::logic_error("mesh.n = " + std::to_string(*n) + " gave " + std::to_string(per_side) + " cells per side");
 }

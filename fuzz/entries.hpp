@@ -25,7 +25,8 @@ void expression_input(std::string_view text);
 // A .msh file's text, written to a temporary file and read with read_mesh.
 void mesh_input(std::string_view text);
 
-// The caps of scene_input: cells per side of a unit square, cells of an interval.
-inline constexpr int kMaxSquareCells = 8, kMaxIntervalCells = 64;
+// The caps of scene_input: cells per side of a unit square and of a unit cube, cells of
+// an interval.
+inline constexpr int kMaxSquareCells = 8, kMaxCubeCells = 3, kMaxIntervalCells = 64;
 
 }  // namespace cdyn::fuzz

@@ -16,6 +16,14 @@ exact integration IM_TRIANGLE(13) and dense linear algebra (numpy).
     /usr/bin/python3 reference_scripts/getfem_matrices.py -n 4 -out getfem_matrices_n4.csv
 writes  pair,n,ndof,mass,trace1,trace2  (the CSV layout of matrices.edp; the pair named
 P1b/P0 there is P1+/P0 here).
+
+With -dim 3 the same on the unit cube cut into n³ cells of six tetrahedra (cdyn's
+unit_cube_mesh: the Kuhn split around each cell's diagonal from (0,0,0) to (1,1,1)),
+with GetFEM's 3D elements FEM_PK(3,1), FEM_PK_WITH_CUBIC_BUBBLE(3,1) (P1 plus the
+quartic bubble of the tetrahedron: GetFEM's name is that of the 2D element),
+FEM_PK_DISCONTINUOUS(3,0), FEM_PK(3,2), and IM_TETRAHEDRON(8), exact for the bubble's
+mass (degree 8):
+    /usr/bin/python3 reference_scripts/getfem_matrices.py -dim 3 -n 2 -out getfem_matrices_3d_n2.csv
 """
 import argparse
 
@@ -31,6 +39,26 @@ def square_mesh(n):
             x0, x1, y0, y1 = i / n, (i + 1) / n, j / n, (j + 1) / n
             m.add_convex(gt, np.array([[x0, x1, x1], [y0, y0, y1]]))
             m.add_convex(gt, np.array([[x0, x1, x0], [y0, y1, y1]]))
+    m.set_region(1, m.outer_faces())
+    return m
+
+
+def cube_mesh(n):
+    """The Kuhn cube of cdyn's unit_cube_mesh: in each cell, one tetrahedron per ordering
+    (a, b, c) of the axes, from the cell's lowest corner along e_a, e_b, e_c."""
+    m = gf.Mesh("empty", 3)
+    gt = gf.GeoTrans("GT_PK(3,1)")
+    orders = [(0, 1, 2), (1, 2, 0), (2, 0, 1), (0, 2, 1), (2, 1, 0), (1, 0, 2)]
+    for k in range(n):
+        for j in range(n):
+            for i in range(n):
+                for order in orders:
+                    at = [i, j, k]
+                    corners = [list(at)]
+                    for axis in order:
+                        at[axis] += 1
+                        corners.append(list(at))
+                    m.add_convex(gt, np.array(corners, dtype=float).T / n)
     m.set_region(1, m.outer_faces())
     return m
 
@@ -70,7 +98,7 @@ def invariants(m, mim, wname, hname):
     mass = one_w @ M_all @ one_w
     fixed_w = set(mfw.basic_dof_on_region(1))
     free_w = [i for i in range(mfw.nbdof()) if i not in fixed_w]
-    if hname == "FEM_PK_DISCONTINUOUS(2,0)":
+    if hname.startswith("FEM_PK_DISCONTINUOUS("):
         free_h = list(range(mfh.nbdof()))
     else:                                  # a continuous velocity vanishes where u is fixed
         fixed_h = set(mfh.basic_dof_on_region(1))
@@ -84,14 +112,16 @@ def invariants(m, mim, wname, hname):
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("-n", type=int, default=4)
+    p.add_argument("-dim", type=int, default=2, choices=[2, 3])
     p.add_argument("-out", default=None)
     a = p.parse_args()
-    out = a.out or f"getfem_matrices_n{a.n}.csv"
-    m = square_mesh(a.n)
-    mim = gf.MeshIm(m, gf.Integ("IM_TRIANGLE(13)"))
-    rows = [("P1/P1", "FEM_PK(2,1)", "FEM_PK(2,1)"),
-            ("P1b/P0", "FEM_PK_WITH_CUBIC_BUBBLE(2,1)", "FEM_PK_DISCONTINUOUS(2,0)"),
-            ("P2/P1", "FEM_PK(2,2)", "FEM_PK(2,1)")]
+    d = a.dim
+    out = a.out or (f"getfem_matrices_n{a.n}.csv" if d == 2 else f"getfem_matrices_3d_n{a.n}.csv")
+    m = square_mesh(a.n) if d == 2 else cube_mesh(a.n)
+    mim = gf.MeshIm(m, gf.Integ("IM_TRIANGLE(13)" if d == 2 else "IM_TETRAHEDRON(8)"))
+    rows = [("P1/P1", f"FEM_PK({d},1)", f"FEM_PK({d},1)"),
+            ("P1b/P0", f"FEM_PK_WITH_CUBIC_BUBBLE({d},1)", f"FEM_PK_DISCONTINUOUS({d},0)"),
+            ("P2/P1", f"FEM_PK({d},2)", f"FEM_PK({d},1)")]
     with open(out, "w") as f:
         f.write("pair,n,ndof,mass,trace1,trace2\n")
         for name, w, h in rows:

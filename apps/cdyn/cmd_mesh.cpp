@@ -51,13 +51,14 @@ int cmd_mesh(const std::string& file, const std::vector<std::string>& sets) {
     }
   }();
 
-  const bool two_d = mesh.dim == 2;
-  // "1 triangle", "2 triangles"
-  auto cells_word = [two_d](std::size_t n) {
-    return std::string(two_d ? "triangle" : "interval") + (n == 1 ? "" : "s");
+  // "1 triangle", "2 triangles", "1 tetrahedron", "2 tetrahedra"
+  const int d = mesh.dim;
+  auto cells_word = [d](std::size_t n) {
+    if (d == 3) return std::string(n == 1 ? "tetrahedron" : "tetrahedra");
+    return std::string(d == 2 ? "triangle" : "interval") + (n == 1 ? "" : "s");
   };
-  auto facets_word = [two_d](std::size_t n) {
-    return std::string(two_d ? "edge" : "point") + (n == 1 ? "" : "s");
+  auto facets_word = [d](std::size_t n) {
+    return std::string(d == 3 ? "triangle" : d == 2 ? "edge" : "point") + (n == 1 ? "" : "s");
   };
 
   // Cells per region (physical group of the top dimension) and facets per boundary
@@ -85,7 +86,7 @@ int cmd_mesh(const std::string& file, const std::vector<std::string>& sets) {
   std::printf("  cells            %d %s\n", mesh.n_cells(), cells_word(mesh.n_cells()).c_str());
   std::printf("  boundary facets  %zu %s (%d in no physical group)\n", mesh.boundary.size(),
               facets_word(mesh.boundary.size()).c_str(), untagged);
-  std::printf("  %-16s %.12g\n", two_d ? "area" : "length", mesh.measure());
+  std::printf("  %-16s %.12g\n", d == 3 ? "volume" : d == 2 ? "area" : "length", mesh.measure());
   std::printf("  h_max            %.6g\n", mesh.h_max());
 
   if (rows.empty()) {

@@ -189,7 +189,7 @@ void Scene::set(const std::string& assignment) {
     const std::string k = kind ? kind->get() : "";
     if (k == "gmsh") t->erase("n");
     if (k != "interval") t->erase("length");
-    if (k == "interval" || k == "unit_square") t->erase("file"), t->erase("set");
+    if (k == "interval" || k == "unit_square" || k == "unit_cube") t->erase("file"), t->erase("set");
   }
 }
 

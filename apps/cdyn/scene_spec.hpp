@@ -33,8 +33,8 @@ struct SceneSpec {
   std::string name, source;  // the scene's name; its file ("" or "default" for the embedded one)
 
   struct Mesh {
-    std::string kind;          // interval | unit_square | gmsh | none (the oscillator)
-    int n = 0;                 // cells per side (interval, unit_square)
+    std::string kind;          // interval | unit_square | unit_cube | gmsh | none (the oscillator)
+    int n = 0;                 // cells per side (interval, unit_square, unit_cube)
     double length = 1.0;       // interval
     std::string file;          // gmsh: .geo or .msh, resolved against the scene's directory
     std::vector<std::pair<std::string, double>> set;  // mesh.set: gmsh parameters of a .geo (-setnumber)
@@ -130,6 +130,10 @@ struct SceneSpec {
 
 // Reads and checks every key of the scene.  InputError naming the key.
 SceneSpec read_scene(const Scene& scene);
+
+// The refusal of physics.model = elasticity on a 3D mesh (a unit_cube, or a gmsh
+// volume found when the mesh is read).
+extern const std::string kNoElasticityIn3D;
 
 // The scene key that a kernel parameter name comes from ("dt" → "time.dt", "rho" →
 // "physics.rho", "pair" → method.pair or method.mass, ...), for the kernel's

@@ -111,6 +111,7 @@ int region(const Mesh& mesh, const std::string& name, const std::string& key) {
 // (problems/elastic_contact.hpp): the materials (one, or one per named region), the body
 // force f + ρ·gravity, Dirichlet and Neumann parts, Γ_C and the plane.
 ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
+  if (mesh.dim == 3) throw InputError(kNoElasticityIn3D);
   if (mesh.dim != 2) throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
   ElasticContactData d;
   d.mass = s.method.mass;
@@ -204,6 +205,7 @@ Mesh make_mesh(const SceneSpec& s) {
   return with_scene_keys(s, [&] {
     if (s.mesh.kind == "interval") return interval_mesh(s.mesh.n, s.mesh.length);
     if (s.mesh.kind == "unit_square") return unit_square_mesh(s.mesh.n);
+    if (s.mesh.kind == "unit_cube") return unit_cube_mesh(s.mesh.n);
     return read_mesh(s.mesh.file, s.mesh.set);
   });
 }

@@ -53,7 +53,7 @@ struct Simulation {
 Simulation make_simulation(const SceneSpec& spec);
 inline Simulation make_simulation(const Scene& scene) { return make_simulation(read_scene(scene)); }
 
-// The mesh a scene describes (mesh.kind: interval, unit_square, gmsh).
+// The mesh a scene describes (mesh.kind: interval, unit_square, unit_cube, gmsh).
 Mesh make_mesh(const SceneSpec& spec);
 
 }  // namespace cdyn::app

@@ -17,7 +17,7 @@ namespace cdyn {
 
 namespace {
 
-constexpr std::uint8_t kVtkLine = 3, kVtkTriangle = 5;
+constexpr std::uint8_t kVtkLine = 3, kVtkTriangle = 5, kVtkTetra = 10;
 
 const char* byte_order() { return std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian"; }
 
@@ -65,17 +65,20 @@ FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, c
 
   // The geometry is the same in every frame: encode it once.
   const int nv = mesh.n_vertices(), nc = mesh.n_cells(), per_cell = mesh.vertices_per_cell();
-  std::vector<double> points(3 * static_cast<std::size_t>(nv), 0.0);  // z = 0
+  std::vector<double> points(3 * static_cast<std::size_t>(nv), 0.0);  // z = 0 below 3D
   for (int v = 0; v < nv; ++v) {
     points[3 * v] = mesh.vertices[v].x;
     points[3 * v + 1] = mesh.vertices[v].y;
+    points[3 * v + 2] = mesh.vertices[v].z;
   }
   std::vector<std::int64_t> connectivity, offsets;
   for (int c = 0; c < nc; ++c) {
     for (int k = 0; k < per_cell; ++k) connectivity.push_back(mesh.cells[c][k]);
     offsets.push_back(static_cast<std::int64_t>(c + 1) * per_cell);
   }
-  const std::vector<std::uint8_t> types(nc, mesh.dim == 2 ? kVtkTriangle : kVtkLine);
+  // (VTK's linear tetrahedron takes its vertices in the order of a positive one, as
+  // the cells are stored: mesh/mesh.hpp)
+  const std::vector<std::uint8_t> types(nc, mesh.dim == 3 ? kVtkTetra : mesh.dim == 2 ? kVtkTriangle : kVtkLine);
   append_block(geometry_blocks_, points);
   append_block(geometry_blocks_, connectivity);
   append_block(geometry_blocks_, offsets);

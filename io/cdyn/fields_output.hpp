@@ -1,8 +1,9 @@
 // fields_output.hpp — the fields of a run for ParaView: fields.pvd + fields/*.vtu.
 //
 // Every output.every steps (and at step 0 and the last step) one VTK XML
-// UnstructuredGrid file holds the mesh (triangles in 2D, VTK_LINE cells in 1D, points
-// at z = 0) and three point fields at its vertices:
+// UnstructuredGrid file holds the mesh (VTK_TETRA cells in 3D, triangles in 2D,
+// VTK_LINE cells in 1D, the points of 1D and 2D meshes at z = 0) and three point fields
+// at its vertices:
 //   u       the displacement, full field (Dirichlet values included);
 //   v       the displacement rate over the last step, (Uⁿ − Uⁿ⁻¹)/dt (0 at step 0);
 //   lambda  the seed's multiplier λ ≤ 0 at the constrained vertices (−reaction of

@@ -235,7 +235,7 @@ void check_parameters(const std::string& path, const GeoParameters& parameters) 
 }
 
 // Opens `path` in the session and, for a .geo, meshes it in its own dimension.
-// Returns that dimension (1 or 2; anything else is refused).
+// Returns that dimension (1, 2 or 3).
 int load(GmshSession& session, const std::string& path, const GeoParameters& parameters) {
   if (!is_geo(path) && !is_msh(path))
     throw InputError(path + ": unknown mesh file type '" + fs::path(path).extension().string() +
@@ -285,10 +285,8 @@ int load(GmshSession& session, const std::string& path, const GeoParameters& par
 
   const int dim = gmsh::model::getDimension();
   if (dim < 1)
-    throw InputError(path + (geo ? ": the geometry has no curve or surface to mesh"
+    throw InputError(path + (geo ? ": the geometry has no curve, surface or volume to mesh"
                                  : ": the file holds no mesh elements"));
-  if (dim > 2)
-    throw InputError(path + ": the model is 3D; cdyn meshes are 1D (lines) or 2D (triangles)");
   if (geo) session.call(path, "meshing failed", [&] { gmsh::model::mesh::generate(dim); });
   return dim;
 }
@@ -311,8 +309,8 @@ int name_index(std::vector<std::string>& names, const std::string& name) {
 
 // The node tags of the elements of dimension `dim` on model entity `entity`, dim + 1
 // per element.  Only first-order simplices are accepted: cdyn's spaces are built on
-// straight triangles and intervals, so a 6-node triangle or a quadrangle is refused
-// here rather than misread later.
+// straight tetrahedra, triangles and intervals, so a 6-node triangle, a quadrangle or
+// a hexahedron is refused here rather than misread later.
 std::vector<std::size_t> simplex_nodes(const std::string& path, int dim, int entity) {
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> element_tags, node_tags;
@@ -329,7 +327,10 @@ std::vector<std::size_t> simplex_nodes(const std::string& path, int dim, int ent
                        "; cdyn reads first-order elements only (Mesh.ElementOrder = 1)");
     if (n_nodes != dim + 1)
       throw InputError(path + ": '" + name + "' elements are not supported; cdyn reads " +
-                       (dim == 2 ? "3-node triangles" : dim == 1 ? "2-node lines" : "points") +
+                       (dim == 3   ? "4-node tetrahedra"
+                        : dim == 2 ? "3-node triangles"
+                        : dim == 1 ? "2-node lines"
+                                   : "points") +
                        " only");
     nodes.insert(nodes.end(), node_tags[b].begin(), node_tags[b].end());
   }
@@ -369,7 +370,8 @@ Mesh extract(const std::string& path, int dim) {
     for (const auto& [d, e] : entities) take(e, -1);
   }
   if (cell_nodes.empty())
-    throw InputError(path + ": the mesh has no " + (dim == 2 ? "triangles" : "line elements"));
+    throw InputError(path + ": the mesh has no " +
+                     (dim == 3 ? "tetrahedra" : dim == 2 ? "triangles" : "line elements"));
 
   // 2. Vertices: the nodes used by cells, numbered 0..nv-1 in increasing tag order
   //    (nodes of unused points, such as a circle's centre, are left out).
@@ -393,8 +395,8 @@ Mesh extract(const std::string& path, int dim) {
     // A 2D mesh must lie in the plane z = 0, a 1D mesh on the x axis: cdyn keeps
     // (x, y) in 2D and x in 1D, and silently dropping a coordinate would distort it.
     extent = std::max({extent, std::abs(x), std::abs(y), std::abs(z)});
-    off_plane = std::max(off_plane, dim == 2 ? std::abs(z) : std::max(std::abs(y), std::abs(z)));
-    mesh.vertices[it->second] = {x, dim == 2 ? y : 0.0};
+    if (dim < 3) off_plane = std::max(off_plane, dim == 2 ? std::abs(z) : std::max(std::abs(y), std::abs(z)));
+    mesh.vertices[it->second] = {x, dim >= 2 ? y : 0.0, dim == 3 ? z : 0.0};
     found[it->second] = true;
   }
   if (std::find(found.begin(), found.end(), false) != found.end())
@@ -403,9 +405,11 @@ Mesh extract(const std::string& path, int dim) {
     throw InputError(path + (dim == 2 ? ": the 2D mesh does not lie in the plane z = 0"
                                       : ": the 1D mesh does not lie on the x axis (y = z = 0)"));
 
-  // 3. Cells in cdyn numbering, oriented: counter-clockwise triangles (positive
-  //    Jacobian), intervals left to right.  gmsh's .geo meshes are already CCW for a
-  //    surface whose normal is +z, but a .msh or a reversed surface need not be.
+  // 3. Cells in cdyn numbering, oriented: counter-clockwise triangles, positively
+  //    oriented tetrahedra (positive Jacobian), intervals left to right.  gmsh's .geo
+  //    meshes are already so for a surface whose normal is +z and for gmsh's
+  //    tetrahedra, but a .msh or a reversed surface need not be; swapping the last two
+  //    vertices reverses the orientation.
   const std::size_t n_cells = cell_nodes.size() / nv;
   mesh.cells.resize(n_cells, {-1, -1, -1});
   for (std::size_t c = 0; c < n_cells; ++c) {
@@ -415,8 +419,8 @@ Mesh extract(const std::string& path, int dim) {
   }
   if (!mesh.region_names.empty()) mesh.cell_region = std::move(cell_region);
 
-  // 4. Boundary facets: each physical group of dimension dim - 1 (curves in 2D,
-  //    points in 1D) becomes the boundary part of its name.
+  // 4. Boundary facets: each physical group of dimension dim - 1 (surfaces in 3D,
+  //    curves in 2D, points in 1D) becomes the boundary part of its name.
   gmsh::vectorpair parts;
   gmsh::model::getPhysicalGroups(parts, dim - 1);
   for (const auto& [d, tag] : parts) {
@@ -432,7 +436,7 @@ Mesh extract(const std::string& path, int dim) {
         for (int i = 0; i < dim; ++i) {
           const auto it = vertex_of_node.find(nodes[f * dim + i]);
           if (it == vertex_of_node.end())
-            throw InputError(path + ": physical " + (d == 1 ? "curve '" : "point '") + name +
+            throw InputError(path + ": physical " + (d == 2 ? "surface '" : d == 1 ? "curve '" : "point '") + name +
                              "' is not on the meshed domain (a node of it belongs to no cell)");
           facet.vertices[i] = it->second;
         }

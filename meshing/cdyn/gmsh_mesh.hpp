@@ -3,12 +3,13 @@
 // A .geo file is meshed through the gmsh C++ API; a .msh file (format 2.2 or 4.1,
 // what gmsh and FreeFEM exchange) is read through the same API.  Physical groups
 // carry the names the rest of cdyn uses:
-//   - groups of the top dimension (physical surfaces in 2D, curves in 1D) select the
-//     cells and become regions (Mesh::cell_region, Mesh::region_names);
-//   - groups of one dimension lower (curves in 2D, points in 1D) become the named
-//     boundary parts (Mesh::part_names), e.g. "dirichlet", "contact".
-// Only first-order simplices are accepted: 3-node triangles (2D, in the plane z = 0)
-// and 2-node lines (1D, along the x axis).  docs/meshing.md has the details.
+//   - groups of the top dimension (physical volumes in 3D, surfaces in 2D, curves in
+//     1D) select the cells and become regions (Mesh::cell_region, Mesh::region_names);
+//   - groups of one dimension lower (surfaces in 3D, curves in 2D, points in 1D) become
+//     the named boundary parts (Mesh::part_names), e.g. "dirichlet", "contact".
+// Only first-order simplices are accepted: 4-node tetrahedra (3D), 3-node triangles
+// (2D, in the plane z = 0) and 2-node lines (1D, along the x axis).  docs/meshing.md
+// has the details.
 //
 // Parameters.  A .geo is usually written with its mesh size (and other numbers) as
 // parameters, DefineConstant[h = {0.1, Name "..."}], which `gmsh -setnumber h 0.05`
@@ -41,8 +42,9 @@ using GeoParameters = std::vector<std::pair<std::string, double>>;
 
 // Reads `path` (.geo: meshed in its own dimension; .msh: read as is) into a Mesh:
 // vertices numbered 0..nv-1 in increasing gmsh node tag order (only nodes used by a
-// cell), triangles counter-clockwise, boundary facets tagged with their physical
-// group (untagged boundary facets get part -1), checked with Mesh::check.
+// cell), triangles counter-clockwise, tetrahedra positively oriented, boundary facets
+// (triangles in 3D) tagged with their physical group (untagged boundary facets get
+// part -1), checked with Mesh::check.
 // `parameters` (.geo only): see above.
 Mesh read_mesh(const std::string& path, const GeoParameters& parameters = {});
 

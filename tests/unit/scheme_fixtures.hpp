@@ -2,6 +2,8 @@
 // on a coarse mesh for every pair and classical mass model, and its initial state.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -63,6 +65,20 @@ inline SchemeParameters plain() {
   SchemeParameters prm;
   prm.reconstruct = false;
   return prm;
+}
+
+// Backward Euler's energy inequality along `steps` steps: J never increases (up to
+// 1e-13 of J0, round-off) and ends below J0.
+inline void expect_dissipative(TimeScheme& scheme, State& s, int steps, const std::string& what) {
+  double J = scheme.energy(s).total();
+  const double J0 = J;
+  for (int n = 0; n < steps; ++n) {
+    scheme.step(s);
+    const double J1 = scheme.energy(s).total();
+    ASSERT_LE(J1, J + 1e-13 * std::abs(J0)) << what << " step " << n;
+    J = J1;
+  }
+  EXPECT_LT(J, J0) << what << ": backward Euler is dissipative";
 }
 
 inline QPOptions tight() {

@@ -22,9 +22,15 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
 #include "cdyn/mesh/mesh.hpp"
+#include "gmsh_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using cdyn::Mesh;
+using cdyn::testing::expect_input_error;
+using cdyn::testing::facet_measure;
+using cdyn::testing::part_measure;
+using cdyn::testing::scratch_dir;
+using cdyn::testing::write_text;
 
 namespace {
 
@@ -32,39 +38,9 @@ std::string data_geo(const std::string& name) {
   return std::string(CDYN_SOURCE_DIR) + "/data/geo/" + name;
 }
 
-// A fresh scratch directory per test: CTest may run the tests in parallel.
-fs::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::path(CDYN_BINARY_DIR) / "test_gmsh_mesh_tmp" / (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-  return path.string();
-}
-
-double facet_length(const Mesh& m, const cdyn::BoundaryFacet& f) {
-  if (m.dim == 1) return 0.0;
-  const auto& a = m.vertices[f.vertices[0]];
-  const auto& b = m.vertices[f.vertices[1]];
-  return std::hypot(b.x - a.x, b.y - a.y);
-}
-
-// Total length of the facets of boundary part `part` (-1: untagged facets).
-double part_length(const Mesh& m, int part) {
-  double s = 0.0;
-  for (const auto& f : m.boundary)
-    if (f.part == part) s += facet_length(m, f);
-  return s;
-}
-
 double boundary_length(const Mesh& m) {
   double s = 0.0;
-  for (const auto& f : m.boundary) s += facet_length(m, f);
+  for (const auto& f : m.boundary) s += facet_measure(m, f);
   return s;
 }
 
@@ -96,23 +72,6 @@ std::vector<std::vector<Position>> cells_by_position(const Mesh& m) {
   return cells;
 }
 
-// Expects read_mesh(path) to throw InputError with a one-line message naming `path`
-// and containing `expected` (if non-empty).
-void expect_input_error(const std::string& path, const std::string& expected = "") {
-  try {
-    (void)cdyn::read_mesh(path);
-    ADD_FAILURE() << path << ": no InputError thrown";
-  } catch (const cdyn::InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    if (!expected.empty()) {
-      EXPECT_NE(what.find(expected), std::string::npos) << what;
-    }
-    std::cout << "  [message] " << what << "\n";
-  }
-}
-
 }  // namespace
 
 // The L-shape [0,1]^2 \ [0.5,1]^2: area 3/4, perimeter 4 (outer 3, re-entrant 1).
@@ -126,9 +85,9 @@ TEST(GmshMesh, LShapeFromGeo) {
   ASSERT_EQ(m.region_names, (std::vector<std::string>{"membrane"}));
   ASSERT_EQ(static_cast<int>(m.cell_region.size()), m.n_cells());
   EXPECT_NEAR(boundary_length(m), 4.0, 1e-12);
-  EXPECT_NEAR(part_length(m, m.part_index("outer")), 3.0, 1e-12);
-  EXPECT_NEAR(part_length(m, m.part_index("reentrant")), 1.0, 1e-12);
-  EXPECT_EQ(part_length(m, -1), 0.0) << "the two groups cover the whole boundary";
+  EXPECT_NEAR(part_measure(m, m.part_index("outer")), 3.0, 1e-12);
+  EXPECT_NEAR(part_measure(m, m.part_index("reentrant")), 1.0, 1e-12);
+  EXPECT_EQ(part_measure(m, -1), 0.0) << "the two groups cover the whole boundary";
 
   // The re-entrant sides lie on x = 0.5 or y = 0.5 with x, y >= 0.5; the outer ones on
   // x = 0, y = 0, x = 1 or y = 1.
@@ -199,11 +158,11 @@ TEST(GmshMesh, DiskAreaAndContactHalf) {
   ASSERT_EQ(m.dim, 2);
   ASSERT_EQ(m.part_names, (std::vector<std::string>{"contact", "free"}));
   ASSERT_EQ(m.region_names, (std::vector<std::string>{"disk"}));
-  EXPECT_EQ(part_length(m, -1), 0.0);
+  EXPECT_EQ(part_measure(m, -1), 0.0);
 
   double t_max = 0.0, inscribed = 0.0, r_err = 0.0;
   for (const auto& f : m.boundary) {
-    const double t = 2.0 * std::asin(facet_length(m, f) / (2.0 * R));
+    const double t = 2.0 * std::asin(facet_measure(m, f) / (2.0 * R));
     t_max = std::max(t_max, t);
     inscribed += 0.5 * R * R * std::sin(t);
     for (int i = 0; i < 2; ++i) {
@@ -232,7 +191,7 @@ TEST(GmshMesh, DiskAreaAndContactHalf) {
     }
   EXPECT_NEAR(y_min, yc - R, 1e-12) << "lowest point 0.5 mm above the plane y = 0";
   for (int part : {contact, free}) {
-    const double L = part_length(m, part);  // chord 2R sin(t/2) >= R t (1 - t^2/24)
+    const double L = part_measure(m, part);  // chord 2R sin(t/2) >= R t (1 - t^2/24)
     EXPECT_LE(L, pi * R);
     EXPECT_GE(L, pi * R * (1.0 - t_max * t_max / 24.0));
   }
@@ -297,7 +256,7 @@ $EndElements
   EXPECT_TRUE(m.region_names.empty());
   EXPECT_TRUE(m.cell_region.empty());
   EXPECT_EQ(m.boundary.size(), 4u);  // 2 tagged + 2 untagged
-  EXPECT_NEAR(part_length(m, -1), 2.0, 1e-15);
+  EXPECT_NEAR(part_measure(m, -1), 2.0, 1e-15);
   EXPECT_NEAR(boundary_length(m), 4.0, 1e-15);
 }
 
@@ -325,7 +284,7 @@ Physical Curve("clamped") = {4};
     EXPECT_EQ(cells_by_position(back), cells_by_position(direct));
     EXPECT_EQ(back.region_names, std::vector<std::string>{"domain"});
     EXPECT_NEAR(back.measure(), 1.0, 1e-12);
-    EXPECT_NEAR(part_length(back, back.part_index("clamped")), 1.0, 1e-12);
+    EXPECT_NEAR(part_measure(back, back.part_index("clamped")), 1.0, 1e-12);
     EXPECT_NEAR(boundary_length(back), 4.0, 1e-12);
   }
 }
@@ -346,7 +305,7 @@ TEST(GmshMeshBadInput, GeoSyntaxError) {
   const fs::path dir = scratch_dir();
   expect_input_error(write_text(dir / "syntax.geo", "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0 0.1};\n"),
                      "syntax error");
-  expect_input_error(write_text(dir / "empty.geo", "// nothing\n"), "no curve or surface");
+  expect_input_error(write_text(dir / "empty.geo", "// nothing\n"), "no curve, surface or volume");
 }
 
 TEST(GmshMeshBadInput, UnsupportedElementsAndFiles) {

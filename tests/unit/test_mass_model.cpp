@@ -25,56 +25,19 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/mass/mass_model.hpp"
 #include "cdyn/mass/redistribution.hpp"
+#include "mass_fixtures.hpp"
 
 using namespace cdyn;
+using namespace cdyn::testing;  // mass_fixtures.hpp
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 namespace {
 
-// M as a dense matrix: matrix() when the model has it, else column by column through
-// the operators the time schemes use, M e_j = Bᵀ (C⁻¹ B e_j) (dense only in tests).
-MatrixXd dense_mass(const MassModel& m, int n) {
-  if (const auto M = m.matrix()) return MatrixXd(*M);
-  MatrixXd D(n, n);
-  for (int j = 0; j < n; ++j) D.col(j) = m.momentum(m.velocity(VectorXd::Unit(n, j)));
-  return D;
-}
-
 std::vector<int> parts(const Mesh& m, const std::vector<std::string>& names) {
   std::vector<int> p;
   for (const auto& n : names) p.push_back(m.part_index(n));
   return p;
-}
-
-// The free dofs (all components) of the vertices of the named parts: the contact dofs.
-std::vector<int> contact_dofs(const FESpace& W, const DirichletLift& bc, const std::vector<std::string>& names,
-                              std::vector<int> components = {}) {
-  if (components.empty())
-    for (int k = 0; k < W.components(); ++k) components.push_back(k);
-  std::vector<int> c;
-  for (int v : W.mesh().part_vertices(parts(W.mesh(), names)))
-    for (int k : components)
-      if (const int f = bc.free_index(W.vertex_dof(v, k)); f >= 0) c.push_back(f);
-  return c;
-}
-
-// The interpolated affine fields restricted to the free dofs: 1, x, y per component
-// (1D: 1, x).  Column order: component-major.
-MatrixXd affine_fields(const FESpace& W, const DirichletLift& bc) {
-  const std::vector<Field> f = {[](double, double, double) { return 1.0; },
-                                [](double x, double, double) { return x; },
-                                [](double, double y, double) { return y; }};
-  const int nf = W.dim() + 1, nc = W.components();
-  MatrixXd P(bc.n_free(), nf * nc);
-  const Field zero = [](double, double, double) { return 0.0; };
-  for (int k = 0; k < nc; ++k)
-    for (int a = 0; a < nf; ++a) {
-      std::vector<Field> g(nc, zero);
-      g[k] = f[a];
-      P.col(k * nf + a) = bc.restrict(W.interpolate(g));
-    }
-  return P;
 }
 
 // A named configuration: mesh, W element, components, Dirichlet parts, contact parts.
@@ -92,20 +55,22 @@ std::vector<Config> configs_without_dirichlet() {
     s.push_back({"square", unit_square_mesh(4, 1.5, 1.0), e, 1, {}, {"bottom"}});
     s.push_back({"interval", interval_mesh(6, 2.5), e, 1, {}, {"left"}});
     s.push_back({"square-vector", unit_square_mesh(3, 1.5, 1.0), e, 2, {}, {"bottom"}});
+    s.push_back({"cube", unit_cube_mesh(2), e, 1, {}, {"bottom"}});
+    s.push_back({"cube-vector", unit_cube_mesh(2), e, 3, {}, {"bottom"}});
   }
   return s;
 }
 
 std::vector<std::string> specs_for(Element W, int dim) {
   std::vector<std::string> s = {"P0", "P1", "consistent", "redistributed"};
-  if (!(W == Element::P2 && dim == 2)) s.push_back("lumped");  // 2D P2 row sums vanish
+  if (!(W == Element::P2 && dim >= 2)) s.push_back("lumped");  // P2's vertex row sums: 0 in 2D, < 0 in 3D
   return s;
 }
 
 }  // namespace
 
 // M symmetric positive semi-definite and 1_hᵀ M 1_h = ρ|Ω| for every pair and model,
-// scalar and vector, in 1D and 2D (no Dirichlet elimination, so the constant is free).
+// scalar and vector, in 1D, 2D and 3D (no Dirichlet elimination, so the constant is free).
 TEST(MassModel, SymmetricPsdAndTotalMass) {
   const double rho = 2.5;
   double worst_sym = 0, worst_neg = 0, worst_mass = 0;

@@ -3,7 +3,9 @@
 // P1b is cdyn's P1+ in a nodal basis, so entries differ while
 //   1ᵀM1 (no Dirichlet condition; the measure of Ω),
 //   tr(A_ff⁻¹ M_ff) = Σ 1/ω_k²  and  tr((A_ff⁻¹ M_ff)²) = Σ 1/ω_k⁴  (u = 0 on ∂Ω)
-// agree for the same space.  Pairs P1/P1, P1+/P0 (P1b/P0), P2/P1 at n = 4 and 10.
+// agree for the same space.  Pairs P1/P1, P1+/P0 (P1b/P0), P2/P1 at n = 4 and 10; in 3D
+// against GetFEM on the Kuhn cube (unit_cube_mesh) at n = 2 and 3, where P1+ is GetFEM's
+// FEM_PK_WITH_CUBIC_BUBBLE(3,1), P1 plus the quartic bubble.
 // Both sides integrate exactly and solve directly: the tolerance 1e-10 relative covers
 // the round-off of dense solves with A's condition number (≈ 1e3 at n = 10); FreeFEM's
 // tgv = 1e30 on the Dirichlet rows perturbs its numbers by ~1e-30.  The stored CSVs are
@@ -15,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "cdyn/problems/scalar_wave.hpp"
 
@@ -50,7 +53,8 @@ ConstrainedProblem problem(const Mesh& mesh, Element W, const std::string& H, bo
   ScalarWaveData d;
   d.mass = cdyn::MassSpec::parse(H, W);
   d.f = [](double, double, double) { return 0.0; };
-  if (dirichlet) d.dirichlet_parts = {0, 1, 2, 3};
+  if (dirichlet)
+    for (int part = 0; part < static_cast<int>(mesh.part_names.size()); ++part) d.dirichlet_parts.push_back(part);
   d.dirichlet_value = [](double, double, double) { return 0.0; };
   d.obstacle = false;
   d.obstacle_g = [](double, double, double) { return 0.0; };
@@ -81,10 +85,11 @@ Invariants cdyn_invariants(const Mesh& mesh, Element W, const std::string& H) {
 
 // program: "matrices" (FreeFEM, reference_scripts/matrices.edp) or "getfem_matrices"
 // (GetFEM, reference_scripts/getfem_matrices.py, whose P1+ is FEM_PK_WITH_CUBIC_BUBBLE).
-void check_against(const std::string& program) {
-  for (int n : {4, 10}) {
+// dim 3: the unit cube (GetFEM only, "getfem_matrices_3d").
+void check_against(const std::string& program, int dim = 2) {
+  for (int n : dim == 2 ? std::vector<int>{4, 10} : std::vector<int>{2, 3}) {
     const auto ff = read_reference(program, n);
-    const Mesh mesh = unit_square_mesh(n);
+    const Mesh mesh = dim == 2 ? unit_square_mesh(n) : unit_cube_mesh(n);
     const std::tuple<std::string, Element, std::string> pairs[] = {
         {"P1/P1", Element::P1, "P1"}, {"P1b/P0", Element::P1Bubble, "P0"}, {"P2/P1", Element::P2, "P1"}};
     for (const auto& [name, W, H] : pairs) {
@@ -102,3 +107,4 @@ void check_against(const std::string& program) {
 
 TEST(ReferenceMatrices, InvariantsAgreeWithFreeFEM) { check_against("matrices"); }
 TEST(ReferenceMatrices, InvariantsAgreeWithGetFEM) { check_against("getfem_matrices"); }
+TEST(ReferenceMatrices, InvariantsAgreeWithGetFEMOnTetrahedra) { check_against("getfem_matrices_3d", 3); }

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <vector>
 
 #include "cdyn/mesh/cell_geometry.hpp"
@@ -129,13 +128,14 @@ SparseMatrix assemble_laplace(const FESpace& W) {
 }
 
 SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda_c, const CellCoefficient& mu_c) {
-  if (W.components() != 2 || W.dim() != 2)
-    throw InputError("assemble_elasticity: a 2-component space on a 2D mesh is expected");
+  const int nc = W.dim();  // components: 2 (plane strain) or 3
+  if (nc < 2 || W.components() != nc)
+    throw InputError("assemble_elasticity: a 2-component space on a 2D mesh or a 3-component one on a 3D mesh is expected");
   check_cells(lambda_c, W.mesh(), "assemble_elasticity: lambda");
   check_cells(mu_c, W.mesh(), "assemble_elasticity: mu");
-  const QuadratureRule q = cell_quadrature(2, 2 * (W.degree() - 1));
+  const QuadratureRule q = cell_quadrature(nc, 2 * (W.degree() - 1));
   const Tabulation tw(W, q);
-  const int n = tw.n, m = 2 * n;  // local vector dofs: (scalar i, component k) -> 2i + k
+  const int n = tw.n, m = nc * n;  // local vector dofs: (scalar i, component k) -> nc·i + k
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * m * m);
   std::vector<Grad> g(n);
@@ -151,11 +151,12 @@ SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda
       // ε(ψ_i e_k) : ε(ψ_j e_l) = ½ (δ_kl ∇ψ_i·∇ψ_j + ∂_l ψ_i ∂_k ψ_j).
       for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-          const double gg = g[i][0] * g[j][0] + g[i][1] * g[j][1];
-          for (int k = 0; k < 2; ++k)
-            for (int l = 0; l < 2; ++l) {
+          double gg = g[i][0] * g[j][0] + g[i][1] * g[j][1];
+          if (nc == 3) gg += g[i][2] * g[j][2];
+          for (int k = 0; k < nc; ++k)
+            for (int l = 0; l < nc; ++l) {
               const double eps = 0.5 * ((k == l ? gg : 0.0) + g[i][l] * g[j][k]);
-              local[(2 * i + k) * m + 2 * j + l] += w * (lambda * g[i][k] * g[j][l] + 2.0 * mu * eps);
+              local[(nc * i + k) * m + nc * j + l] += w * (lambda * g[i][k] * g[j][l] + 2.0 * mu * eps);
             }
         }
     }
@@ -163,9 +164,9 @@ SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j)
         if (stiffness_couples(W, i, j))
-          for (int k = 0; k < 2; ++k)
-            for (int l = 0; l < 2; ++l)
-              t.emplace_back(W.dof(d[i], k), W.dof(d[j], l), local[(2 * i + k) * m + 2 * j + l]);
+          for (int k = 0; k < nc; ++k)
+            for (int l = 0; l < nc; ++l)
+              t.emplace_back(W.dof(d[i], k), W.dof(d[j], l), local[(nc * i + k) * m + nc * j + l]);
   }
   return from_triplets(W.n_dofs(), W.n_dofs(), t);
 }
@@ -206,75 +207,6 @@ Eigen::VectorXd assemble_load(const FESpace& W, const CellCoefficient& w, const 
 
 Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t) {
   return assemble_load(W, std::vector<Field>{f}, t);
-}
-
-namespace {
-
-// The cell owning each boundary facet, and the local indices of the facet's vertices in
-// it: facet vertices (a, b) are the cell's local vertices (ka, kb).
-struct FacetInCell {
-  int cell = -1, ka = -1, kb = -1;
-};
-
-std::vector<FacetInCell> locate_facets(const Mesh& mesh) {
-  const int nv = mesh.vertices_per_cell();
-  std::map<std::pair<int, int>, FacetInCell> owner;  // sorted vertex pair (1D: (v, v))
-  for (int c = 0; c < mesh.n_cells(); ++c)
-    for (int i = 0; i < nv; ++i)
-      for (int j = (mesh.dim == 1 ? i : i + 1); j < (mesh.dim == 1 ? i + 1 : nv); ++j) {
-        const int a = mesh.cells[c][i], b = mesh.cells[c][j];
-        owner[std::minmax(a, b)] = {c, a <= b ? i : j, a <= b ? j : i};
-      }
-  std::vector<FacetInCell> out;
-  for (const auto& f : mesh.boundary) {
-    const int a = f.vertices[0], b = mesh.dim == 1 ? a : f.vertices[1];
-    const auto it = owner.find(std::minmax(a, b));
-    if (it == owner.end()) throw InputError("assemble_boundary_load: a boundary facet is not a facet of any cell");
-    FacetInCell k = it->second;
-    if (a > b) std::swap(k.ka, k.kb);  // k.ka is now the local index of vertex a
-    out.push_back(k);
-  }
-  return out;
-}
-
-// Reference coordinates of the local vertices of the reference interval / triangle.
-RefPoint reference_vertex(int dim, int k) {
-  if (dim == 1) return {static_cast<double>(k), 0.0, 0.0};
-  return {k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0, 0.0};
-}
-
-}  // namespace
-
-Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>& parts, const std::vector<Field>& g,
-                                       double t) {
-  if (static_cast<int>(g.size()) != W.components())
-    throw InputError("assemble_boundary_load: one field per component expected");
-  const Mesh& mesh = W.mesh();
-  const std::vector<FacetInCell> where = locate_facets(mesh);
-  // A point facet (1D) is "integrated" by one evaluation with weight 1.
-  const QuadratureRule edge = mesh.dim == 1 ? QuadratureRule{{{0.0, 0.0, 0.0}}, {1.0}} : gauss_legendre(W.degree() + 2);
-  Eigen::VectorXd L = Eigen::VectorXd::Zero(W.n_dofs());
-  std::vector<double> phi(W.local_dofs());
-  for (std::size_t f = 0; f < mesh.boundary.size(); ++f) {
-    if (std::find(parts.begin(), parts.end(), mesh.boundary[f].part) == parts.end()) continue;
-    const FacetInCell& k = where[f];
-    const RefPoint xa = reference_vertex(mesh.dim, k.ka), xb = reference_vertex(mesh.dim, k.kb);
-    const Point& a = mesh.vertices[mesh.cells[k.cell][k.ka]];
-    const Point& b = mesh.vertices[mesh.cells[k.cell][k.kb]];
-    const double length = mesh.dim == 1 ? 1.0 : std::hypot(b.x - a.x, b.y - a.y);  // ds = |b − a| ds_ref
-    const auto d = W.cell_dofs(k.cell);
-    for (int p = 0; p < edge.size(); ++p) {
-      const double s = edge.points[p][0];  // position along the edge, a at s = 0
-      const RefPoint xi{(1 - s) * xa[0] + s * xb[0], (1 - s) * xa[1] + s * xb[1], 0.0};
-      shape_values(W.element(), W.dim(), xi, phi.data());
-      const Point x{(1 - s) * a.x + s * b.x, (1 - s) * a.y + s * b.y, (1 - s) * a.z + s * b.z};
-      for (int c = 0; c < W.components(); ++c) {
-        const double gw = g[c](x, t) * edge.weights[p] * length;
-        for (int i = 0; i < W.local_dofs(); ++i) L[W.dof(d[i], c)] += gw * phi[i];
-      }
-    }
-  }
-  return L;
 }
 
 }  // namespace cdyn

@@ -11,7 +11,7 @@ namespace cdyn {
 
 FESpace::FESpace(const Mesh& mesh, Element element, int components)
     : mesh_(&mesh), element_(element), components_(components), local_dofs_(cdyn::local_dofs(element, mesh.dim)) {
-  if (components < 1 || components > 2) throw InputError("a space has 1 or 2 components");
+  if (components < 1 || components > 3) throw InputError("a space has 1, 2 or 3 components");
   const int nv = mesh.n_vertices(), nc = mesh.n_cells(), d = mesh.dim;
   cell_dofs_.resize(static_cast<std::size_t>(nc) * local_dofs_);
   auto centroid = [&](int c) { return CellGeometry(mesh, c).map(local_node(Element::P0, d, 0)); };
@@ -38,11 +38,11 @@ FESpace::FESpace(const Mesh& mesh, Element element, int components)
     }
     n_scalar_dofs_ = nv + nc;
   } else if (element == Element::P2) {  // one dof per edge, numbered by first appearance
-    constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
     std::map<std::pair<int, int>, int> index;
     for (int c = 0; c < nc; ++c)
-      for (int e = 0; e < 3; ++e) {
-        const int a = mesh.cells[c][kEdge[e][0]], b = mesh.cells[c][kEdge[e][1]];
+      for (int e = 0; e < n_local_edges(d); ++e) {
+        const auto [ka, kb] = local_edge(e);
+        const int a = mesh.cells[c][ka], b = mesh.cells[c][kb];
         const auto key = std::minmax(a, b);
         auto [it, inserted] = index.try_emplace({key.first, key.second}, static_cast<int>(edges_.size()));
         if (inserted) {
@@ -51,7 +51,7 @@ FESpace::FESpace(const Mesh& mesh, Element element, int components)
           const Point& pb = mesh.vertices[b];
           dof_points_.push_back({0.5 * (pa.x + pb.x), 0.5 * (pa.y + pb.y), 0.5 * (pa.z + pb.z)});
         }
-        cell_dofs_[static_cast<std::size_t>(c) * local_dofs_ + 3 + e] = nv + it->second;
+        cell_dofs_[static_cast<std::size_t>(c) * local_dofs_ + d + 1 + e] = nv + it->second;
       }
     n_scalar_dofs_ = nv + static_cast<int>(edges_.size());
   }
@@ -60,13 +60,17 @@ FESpace::FESpace(const Mesh& mesh, Element element, int components)
 std::vector<int> FESpace::boundary_scalar_dofs(const std::vector<int>& parts) const {
   if (element_ == Element::P0) return {};
   std::vector<int> s = mesh_->part_vertices(parts);
-  if (element_ == Element::P2 && dim() == 2) {
+  if (element_ == Element::P2 && dim() >= 2) {
+    // the edges of each facet: the facet itself in 2D, its three sides in 3D
     std::map<std::pair<int, int>, int> index;
     for (std::size_t e = 0; e < edges_.size(); ++e) index[{edges_[e][0], edges_[e][1]}] = static_cast<int>(e);
     for (const auto& f : mesh_->boundary) {
       if (std::find(parts.begin(), parts.end(), f.part) == parts.end()) continue;
-      const auto key = std::minmax(f.vertices[0], f.vertices[1]);
-      s.push_back(mesh_->n_vertices() + index.at({key.first, key.second}));
+      for (int i = 0; i < dim(); ++i)
+        for (int j = i + 1; j < dim(); ++j) {
+          const auto key = std::minmax(f.vertices[i], f.vertices[j]);
+          s.push_back(mesh_->n_vertices() + index.at({key.first, key.second}));
+        }
     }
     std::sort(s.begin(), s.end());
     s.erase(std::unique(s.begin(), s.end()), s.end());
@@ -101,7 +105,7 @@ Eigen::VectorXd FESpace::interpolate(const std::vector<Field>& f, double t) cons
 }
 
 double FESpace::value_in_cell(const Eigen::VectorXd& U, int c, const RefPoint& xi, int k) const {
-  double phi[6];
+  double phi[kMaxLocalDofs];
   shape_values(element_, dim(), xi, phi);
   const auto dofs = cell_dofs(c);
   double u = 0.0;

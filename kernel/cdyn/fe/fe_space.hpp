@@ -1,19 +1,19 @@
 // fe/fe_space.hpp — a finite element space on a mesh: its degrees of freedom (dof map).
 //
 // A space is a reference element (P0, P1, P1+, P2) repeated over the cells of a mesh,
-// with `components` copies for vector-valued fields (2 for plane elasticity).  Both
+// with `components` copies for vector-valued fields (2 for plane elasticity, 3 in 3D).  Both
 // spaces of the seed's approximation (eq. 9) are FESpaces: W^h (displacement, basis φ_i)
 // and H^h (velocity, basis ψ_i).
 //
 // Numbering of the scalar dofs (one scalar function per dof):
 //   P1, P1+, P2 : vertex dofs first — scalar dof v IS vertex v — then one bubble per
-//                 cell (P1+: dof n_vertices + c) or one dof per edge (P2, 2D) / per cell
-//                 midpoint (P2, 1D);
+//                 cell (P1+: dof n_vertices + c) or one dof per edge (P2, 2D and 3D) /
+//                 per cell midpoint (P2, 1D);
 //   P0          : dof c is cell c.
 // Vector-valued spaces interleave the components node by node:
 //   dof(scalar s, component k) = components * s + k,
-// so the two displacement components of a contact node are adjacent (a node-local
-// rotation to normal/tangential components touches a 2 × 2 block).
+// so the displacement components of a contact node are adjacent (a node-local
+// rotation to normal/tangential components touches a 2 × 2 or 3 × 3 block).
 //
 // "Vertex dofs" are where constraints live (the seed's K̄^h acts on vertex values
 // only, never on bubble or edge dofs).
@@ -33,8 +33,8 @@ namespace cdyn {
 class FESpace {
  public:
   // The space of `element` on `mesh` (kept by pointer: the mesh must outlive the space);
-  // builds the dof map and the nodal points.  Throws InputError unless components is 1
-  // or 2.
+  // builds the dof map and the nodal points.  Throws InputError unless components is 1,
+  // 2 or 3.
   FESpace(const Mesh& mesh, Element element, int components = 1);
 
   const Mesh& mesh() const { return *mesh_; }
@@ -65,7 +65,7 @@ class FESpace {
   const std::vector<Point>& dof_points() const { return dof_points_; }
 
   // Scalar dofs attached to the boundary facets of the given parts: the facets'
-  // vertices and, for P2 in 2D, their edge dofs (sorted, unique).
+  // vertices and, for P2, their edge dofs (sorted, unique).
   std::vector<int> boundary_scalar_dofs(const std::vector<int>& parts) const;
 
   // Nodal interpolant of a scalar field at time t (components must be 1): the seed's
@@ -88,7 +88,7 @@ class FESpace {
   int n_scalar_dofs_ = 0;
   std::vector<int> cell_dofs_;        // n_cells × local_dofs
   std::vector<Point> dof_points_;
-  std::vector<std::array<int, 2>> edges_;  // P2 in 2D: the vertices of each edge dof
+  std::vector<std::array<int, 2>> edges_;  // P2 in 2D and 3D: the vertices of each edge dof
 };
 
 }  // namespace cdyn

@@ -26,6 +26,8 @@ double l2_error(const FESpace& W, const Eigen::VectorXd& U, const Field& u, doub
 
 double h1_seminorm_error(const FESpace& W, const Eigen::VectorXd& U, const GradientField& grad_u, double t) {
   if (W.components() != 1) throw InputError("h1_seminorm_error: a scalar space is expected");
+  // (the exact gradient is given in the plane: a 3D mesh would lose ∂u/∂z unseen)
+  if (W.dim() > 2) throw InputError("h1_seminorm_error: a 1D or 2D mesh is expected (the gradient has two components)");
   const QuadratureRule q = cell_quadrature(W.dim(), 2 * W.degree() + 4);
   const int n = W.local_dofs();
   std::vector<std::array<double, 3>> g(n);

@@ -19,7 +19,7 @@ using GradientField = std::function<std::array<double, 2>(double x, double y, do
 // ‖u(·, t) − u_h‖_L2(Ω), u_h = Σ U_i φ_i the finite element function of the full
 // coefficient vector U on W (Dirichlet values included).
 double l2_error(const FESpace& W, const Eigen::VectorXd& U, const Field& u, double t = 0.0);
-// |u(·, t) − u_h|_H1(Ω) = ‖∇u − ∇u_h‖_L2, from the exact gradient.
+// |u(·, t) − u_h|_H1(Ω) = ‖∇u − ∇u_h‖_L2, from the exact gradient (1D and 2D meshes).
 double h1_seminorm_error(const FESpace& W, const Eigen::VectorXd& U, const GradientField& grad_u, double t = 0.0);
 
 }  // namespace cdyn

@@ -82,18 +82,21 @@ SparseMatrix redistribution_operator(const FESpace& W, const DirichletLift& bc,
       // Moment equations Pᵀ w = p(a_c) in coordinates centred at a_c and scaled by the
       // donors' distance, so that the rank test and the weights are scale-free.
       double h = 0.0;
-      for (const Point& p : where) h = std::max(h, std::hypot(p.x - ac.x, p.y - ac.y));
+      for (const Point& p : where)
+        h = std::max(h, dim == 3 ? std::hypot(p.x - ac.x, p.y - ac.y, p.z - ac.z) : std::hypot(p.x - ac.x, p.y - ac.y));
       Eigen::MatrixXd Pt(dim + 1, donors.size());
       for (std::size_t j = 0; j < donors.size(); ++j) {
         Pt(0, j) = 1.0;
         Pt(1, j) = (where[j].x - ac.x) / h;
-        if (dim == 2) Pt(2, j) = (where[j].y - ac.y) / h;
+        if (dim >= 2) Pt(2, j) = (where[j].y - ac.y) / h;
+        if (dim == 3) Pt(3, j) = (where[j].z - ac.z) / h;
       }
       Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Pt);
-      cod.setThreshold(1e-8);  // affinely dependent donors (all on one line): keep walking
+      // affinely dependent donors (all on one line, or in 3D on one plane): keep walking
+      cod.setThreshold(1e-8);
       if (cod.rank() < dim + 1) continue;
       Eigen::VectorXd e0 = Eigen::VectorXd::Zero(dim + 1);
-      e0[0] = 1.0;  // (1, 0, 0): the value at a_c of 1, x − x_c, y − y_c
+      e0[0] = 1.0;  // (1, 0, ...): the value at a_c of 1, x − x_c, y − y_c, z − z_c
       const Eigen::VectorXd w = cod.solve(e0);  // minimum-norm solution
       for (std::size_t j = 0; j < donors.size(); ++j) t.emplace_back(i, donors[j], w[j]);
       found = true;
@@ -104,7 +107,7 @@ SparseMatrix redistribution_operator(const FESpace& W, const DirichletLift& bc,
                                                      "(every free vertex in contact? redistribution is for a contact "
                                                      "boundary; use a pair such as P1+/P0 for a volume obstacle)")
                                        : std::string(" has no affinely independent donors near it (the non-contact free "
-                                                     "vertices all lie on one line, e.g. a body one cell thick; use a "
+                                                     "vertices all lie on one line or plane, e.g. a body one cell thick; use a "
                                                      "pair such as P1+/P0)")));
   }
   SparseMatrix T(n, n);

@@ -21,7 +21,8 @@
 // Donors: the vertices met by a breadth-first walk over the cell adjacency from the
 // contact vertex, ring by ring, whose dof of the same component is free and not a
 // contact dof; the walk stops at the first ring where the donors found so far are
-// affinely independent (span an affine function: dim + 1 of them not on one line).
+// affinely independent (span an affine function: dim + 1 of them not on one line in
+// 2D, not in one plane in 3D).
 // The weights are the minimum-norm solution of the dim + 1 moment equations.
 #pragma once
 

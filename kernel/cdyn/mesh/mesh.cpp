@@ -142,4 +142,54 @@ Mesh unit_square_mesh(int n, double lx, double ly) {
   return m;
 }
 
+Mesh unit_cube_mesh(int n) {
+  if (n < 1) throw InputError("n", "the cube needs at least one cell per side");
+  // 6n³ cells are indexed by int: refuse n where that overflows
+  if (n > 710) throw InputError("n", "too many cells per side (" + std::to_string(n) + "; at most 710)");
+  Mesh m;
+  m.dim = 3;
+  const int np = n + 1;
+  auto v = [np](int i, int j, int k) { return i + np * (j + np * k); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.vertices.push_back({double(i) / n, double(j) / n, double(k) / n});
+
+  // Kuhn's six tetrahedra: walk from the lowest corner to the highest one along the
+  // axes a, b, c in turn.  The volume is det[e_a, e_a + e_b, e_a + e_b + e_c]/6 =
+  // sign(a, b, c)/6, so the last two vertices are swapped for the odd orderings.
+  constexpr int kOrder[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (int p = 0; p < 6; ++p) {
+          int at[3] = {i, j, k};
+          Cell t{v(i, j, k), -1, -1, -1};
+          for (int s = 0; s < 3; ++s) {
+            ++at[kOrder[p][s]];
+            t[s + 1] = v(at[0], at[1], at[2]);
+          }
+          if (p >= 3) std::swap(t[2], t[3]);
+          m.cells.push_back(t);
+        }
+
+  // A square face with corners a, b, c, d counter-clockwise seen from outside and a, c
+  // its lowest and highest corners: the triangles (a, b, c), (a, c, d) are the faces of
+  // the tetrahedra that touch it.
+  m.part_names = {"front", "right", "back", "left", "bottom", "top"};
+  auto square = [&m](int a, int b, int c, int d, int part) {
+    m.boundary.push_back({{a, b, c}, part});
+    m.boundary.push_back({{a, c, d}, part});
+  };
+  for (int q = 0; q < n; ++q)
+    for (int r = 0; r < n; ++r) {
+      square(v(q, 0, r), v(q + 1, 0, r), v(q + 1, 0, r + 1), v(q, 0, r + 1), 0);  // y = 0, normal −e_y
+      square(v(n, q, r), v(n, q + 1, r), v(n, q + 1, r + 1), v(n, q, r + 1), 1);  // x = 1, +e_x
+      square(v(q, n, r), v(q, n, r + 1), v(q + 1, n, r + 1), v(q + 1, n, r), 2);  // y = 1, +e_y
+      square(v(0, q, r), v(0, q, r + 1), v(0, q + 1, r + 1), v(0, q + 1, r), 3);  // x = 0, −e_x
+      square(v(q, r, 0), v(q, r + 1, 0), v(q + 1, r + 1, 0), v(q + 1, r, 0), 4);  // z = 0, −e_z
+      square(v(q, r, n), v(q + 1, r, n), v(q + 1, r + 1, n), v(q, r + 1, n), 5);  // z = 1, +e_z
+    }
+  return m;
+}
+
 }  // namespace cdyn

@@ -92,4 +92,15 @@ Mesh interval_mesh(int n, double length = 1.0);
 // "bottom", "right", "top", "left" (FreeFEM labels 1, 2, 3, 4).
 Mesh unit_square_mesh(int n, double lx = 1.0, double ly = 1.0);
 
+// The unit cube with n x n x n cells, each split into six tetrahedra around its main
+// diagonal (the Kuhn, or Freudenthal, split: the tetrahedra {x_a >= x_b >= x_c} of the
+// cell's local coordinates, one per ordering (a, b, c) of the axes).  Every face of a
+// cell is then cut along its diagonal from the lowest to the highest corner, the same
+// from both sides, so the mesh is conforming.  Vertex i + (n+1)(j + (n+1)k) sits at
+// (i, j, k)/n.  Boundary parts, in the order of FreeFEM's cube(n,n,n) labels 1..6:
+// "front" (y = 0), "right" (x = 1), "back" (y = 1), "left" (x = 0), "bottom" (z = 0),
+// "top" (z = 1); two triangles per cell face, ordered counter-clockwise seen from
+// outside (their normal (b − a) × (c − a) points out of the cube).
+Mesh unit_cube_mesh(int n);
+
 }  // namespace cdyn

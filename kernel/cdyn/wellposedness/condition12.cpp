@@ -81,7 +81,7 @@ SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc,
     for (int k = 0; k < W.components(); ++k) {
       const int f = bc.free_index(W.vertex_dof(v, k));
       if (f < 0) continue;
-      const double c = W.components() == 1 ? -1.0 : (k == 0 ? n.x : n.y);
+      const double c = W.components() == 1 ? -1.0 : (k == 0 ? n.x : k == 1 ? n.y : n.z);
       if (c != 0.0) {
         t.emplace_back(row, f, c);
         any = true;

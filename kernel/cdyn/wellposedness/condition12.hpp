@@ -91,8 +91,9 @@ WellPosedness condition12_dense(const SparseMatrix& B, const SparseMatrix& G,
 
 // G for constraints at vertices (one row each, fixed vertices skipped: a Dirichlet
 // vertex is not an unknown): scalar W^h: row −e_v (the obstacle u(a_v) ≥ g, seed eq. 16);
-// vector W^h: row n_x e_{v,x} + n_y e_{v,y} (the normal displacement u·n ≤ gap), which
-// needs `normal` (one for all) or `normals` (one per vertex, e.g. a curved obstacle's).
+// vector W^h: row n_x e_{v,x} + n_y e_{v,y} (+ n_z e_{v,z} in 3D: the normal
+// displacement u·n ≤ gap), which needs `normal` (one for all) or `normals` (one per
+// vertex, e.g. a curved obstacle's).
 // Columns are the free dofs of `bc`.
 SparseMatrix vertex_constraint_matrix(const FESpace& W, const DirichletLift& bc, const std::vector<int>& vertices,
                                       std::optional<Point> normal = std::nullopt,
