@@ -13,6 +13,7 @@
 
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/qp/step_solver.hpp"
+#include "cdyn/schemes/damping.hpp"
 
 namespace cdyn {
 
@@ -43,6 +44,10 @@ struct StepStats {
   // discrete_gradient with data in t (a load L(t), a moving obstacle): the step's
   // H^{n+1} − Hⁿ, the discrete work of the data on the body (0 when nothing depends on t).
   double external_work = 0.0;
+  // The work of the Rayleigh damping force over the step (schemes/damping.hpp), ≥ 0:
+  // J^{n+1} + dissipated − Jⁿ is the contact's work (and the data's) for the midpoint
+  // rules, 0 for discrete_gradient, ≤ 0 for backward Euler (docs/schemes.md).
+  double dissipated = 0.0;
 };
 
 // How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):
@@ -92,12 +97,16 @@ struct SchemeParameters {
   // terms of ΔH = ΔK + ΔΨ (½VᵀCV, |Ψ| and the kinetic change's two parts: the round-off
   // of ΔH is a few ε of them; docs/schemes.md, "The discrete gradient scheme").
   double energy_tol = 1e-12;
+  // Rayleigh damping D = αM + βA (backward_euler, midpoint, midpoint_end,
+  // discrete_gradient; the other schemes refuse it).
+  RayleighDamping damping;
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
 // energy_conserving | discrete_gradient.  The problem and the solver must outlive the scheme.  Throws
-// InputError for an unknown name, dt <= 0, parameters out of range, or a mass model
-// the scheme does not accept (paoli_schatzman needs an invertible M in W^h).
+// InputError for an unknown name, dt <= 0, parameters out of range, a mass model the
+// scheme does not accept (paoli_schatzman needs an invertible M in W^h), or damping
+// asked of a scheme without it (parameter "damping").
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
                                              StepSolver& solver, double dt, const SchemeParameters& parameters = {});
 std::vector<std::string> time_scheme_names();
