@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -127,9 +128,10 @@ void remove_previous_outputs(const std::filesystem::path& out) {
 class History {
  public:
   History(const Simulation& sim, const std::filesystem::path& out)
-      : sim_(sim), file_(out / "history.csv"), csv_(file_.stream()) {
+      : sim_(sim), damped_(sim.spec.time.parameters.damping.active()), file_(out / "history.csv"), csv_(file_.stream()) {
     csv_.precision(17);
     csv_ << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s";
+    if (damped_) csv_ << ",dissipated";
     if (sim.components == 2) {
       momentum_.emplace(sim.problem);
       csv_ << ",contact_force,px,py";
@@ -144,11 +146,13 @@ class History {
     csv_ << "\n";
   }
 
-  // reaction_xy: the step's reaction in (x, y) (post/contact_force.hpp).
-  void record(int step, const State& s, const StepStats& st, const Energy& E, const Eigen::VectorXd& rate,
-              const Eigen::VectorXd& reaction_xy) {
+  // reaction_xy: the step's reaction in (x, y) (post/contact_force.hpp); dissipated: the
+  // damping's work W_d from t = 0.
+  void record(int step, const State& s, const StepStats& st, const Energy& E, double dissipated,
+              const Eigen::VectorXd& rate, const Eigen::VectorXd& reaction_xy) {
     csv_ << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
          << st.qp_iterations << "," << st.qp_seconds;
+    if (damped_) csv_ << "," << dissipated;
     const ConstrainedProblem& p = sim_.problem;
     const Eigen::VectorXd U_full = p.full(s.U);
     if (momentum_) {
@@ -182,6 +186,7 @@ class History {
 
  private:
   const Simulation& sim_;
+  bool damped_;  // the column `dissipated`
   AtomicFile file_;
   std::ostream& csv_;
   std::optional<LinearMomentum> momentum_;
@@ -233,6 +238,7 @@ int cmd_run(const RunOptions& opt) {
   EnergyDrift drift(E_initial);
   double max_violation = p.max_violation(s.U), qp_iters = 0.0, qp_seconds = 0.0, E_final = E0;
   double energy_iters = 0.0, max_reconstruction_kkt = 0.0;
+  double dissipated = 0.0;  // W_d, the work of the Rayleigh damping from t = 0
   int max_active = 0;
   double max_kkt = 0.0;  // the largest step-QP KKT residual (≤ solver.tol: the steps are solved)
   Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
@@ -240,9 +246,10 @@ int cmd_run(const RunOptions& opt) {
 
   auto record = [&](int step, const StepStats& st, const Energy& E) {
     E_final = E.total();
-    drift.observe(E);
+    dissipated += st.dissipated;
+    drift.observe(E, dissipated);
     force_xy = reaction_xy(p, s.reaction);
-    history.record(step, s, st, E, rate, force_xy);
+    history.record(step, s, st, E, dissipated, rate, force_xy);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -343,6 +350,10 @@ int cmd_run(const RunOptions& opt) {
   j["E_rel_drift"] = drift.rel();
   j["E_abs_drift"] = drift.abs();
   j["E_scale"] = drift.scale();
+  const RayleighDamping& damping = sim.spec.time.parameters.damping;
+  j["damping"] = damping.active() ? nlohmann::ordered_json{{"alpha", damping.alpha}, {"beta", damping.beta}}
+                                  : nlohmann::ordered_json();
+  j["dissipated_work"] = dissipated;  // W_d(T): J(T) + W_d(T) = J0 for a conservative scheme
   j["max_violation"] = max_violation;
   j["max_active"] = max_active;
   j["wall_s"] = wall;
@@ -375,12 +386,16 @@ int cmd_run(const RunOptions& opt) {
     const std::string label = partial ? "INTERRUPTED after step " + std::to_string(steps_done) + " of " +
                                              std::to_string(sim.n_steps) + " (partial results)"
                                        : "";
-    char energy[200];
+    char energy[300];
+    const char* J = damping.active() ? "J + W_d" : "J";  // with damping, the balance J + W_d = J0
     if (drift.scale_is_J0())
-      std::snprintf(energy, sizeof energy, "max |J - J0|/|J0| = %.3e", drift.rel());
+      std::snprintf(energy, sizeof energy, "max |%s - J0|/|J0| = %.3e", J, drift.rel());
     else  // J0 = 0 (a start from rest) or small against the energies exchanged
-      std::snprintf(energy, sizeof energy, "max |J - J0| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
-                    drift.abs(), drift.rel(), drift.scale());
+      std::snprintf(energy, sizeof energy, "max |%s - J0| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
+                    J, drift.abs(), drift.rel(), drift.scale());
+    if (damping.active())
+      std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy), "; damping dissipated W_d = %.6g",
+                    dissipated);
     std::printf(
         "cdyn run %s: %s, %s, %s, solver %s.%s%s\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
         "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "

@@ -19,11 +19,13 @@ namespace cdyn::app {
 // From rest (J0 = 0: a drop, a load applied from t > 0) the kinetic and potential
 // energies mirror each other, E_kin ≈ −E_pot, and E_scale is the energy they exchange.
 // It vanishes only when E_kin = E_pot = 0 at every step, where J ≡ 0: rel() is then 0.
+// With Rayleigh damping the conserved quantity is J + W_d, W_d ≥ 0 the work the damping
+// has done so far (docs/schemes.md): the drift is max |J + W_d − J0|.
 class EnergyDrift {
  public:
   explicit EnergyDrift(const Energy& E0) : J0_(E0.total()) { observe(E0); }
-  void observe(const Energy& E) {
-    abs_ = std::max(abs_, std::abs(E.total() - J0_));
+  void observe(const Energy& E, double dissipated = 0.0) {
+    abs_ = std::max(abs_, std::abs(E.total() + dissipated - J0_));
     half_sum_ = std::max(half_sum_, 0.5 * (std::abs(E.kinetic) + std::abs(E.potential)));
   }
   double abs() const { return abs_; }

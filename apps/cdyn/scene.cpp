@@ -34,6 +34,7 @@ const std::set<std::string> kKnownKeys = {
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
     "time.beta",      "time.gamma",     "time.restitution", "time.reconstruct", "time.energy_tol",
+    "damping.alpha",  "damping.beta",
     "solver.name",    "solver.tol",     "solver.max_iterations",
     "solver.condense", "solver.cg_iterations",
     "exact.solution",
