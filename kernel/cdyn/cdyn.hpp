@@ -73,6 +73,7 @@
 // schemes/
 #include "cdyn/schemes/damping.hpp"
 #include "cdyn/schemes/full_step.hpp"
+#include "cdyn/schemes/scheme_memory.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 // post/

@@ -122,6 +122,21 @@ class DiscreteGradient final : public StepQPScheme {
     initialized_ = true;
   }
 
+  // Ψ(qⁿ) is remembered, not recomputed: the same number bit for bit.
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    full_step_.store(m);
+    m.numbers["psi"] = psi_;
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    full_step_.restore(m);
+    psi_ = m.number("psi");
+    initialized_ = true;
+  }
+
   StepStats step(State& s) override {
     if (!initialized_) initialize(s);
     StepStats stats;

@@ -50,6 +50,17 @@ class EnergyConserving final : public StepQPScheme {
     return stats;
   }
 
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    m.store_if_any("U_prev", U_prev_);  // (none before the first step)
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    U_prev_ = m.vector_or_empty("U_prev");
+  }
+
   // E^{n+½}: kinetic ½ VᵀCV of V = C⁻¹B (U^{n+1} − Uⁿ) c, potential at Ū = (U^{n+1} + Uⁿ)/2.
   Energy energy(const State& s) const override {
     if (U_prev_.size() == 0) return StepQPScheme::energy(s);  // before the first step

@@ -52,6 +52,18 @@ class Midpoint final : public StepQPScheme {
     if (full_step_) s.U = (*full_step_)(s.U, s.t);
   }
 
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    if (full_step_) full_step_->store(m);
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    if (full_step_) full_step_->restore(m);
+    initialized_ = true;  // the state that goes with m has its massless part already
+  }
+
   StepStats step(State& s) override {
     if (!initialized_) initialize(s);
     const double c = 1.0 / dt_;

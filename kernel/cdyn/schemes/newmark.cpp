@@ -26,6 +26,17 @@ class Newmark final : public StepQPScheme {
       : StepQPScheme(p, solver, dt, 1.0, 1.0 / beta, condense), beta_(beta), gamma_(gamma) {}
   std::string name() const override { return "newmark"; }
 
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    m.store_if_any("Vdot", Vdot_);  // (none before the first step)
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    Vdot_ = m.vector_or_empty("Vdot");
+  }
+
   StepStats step(State& s) override {
     const double c = 1.0 / dt_, b = beta_;
     // V̇⁰ from (N3) at t = 0 with λ⁰ = 0: Bᵀ V̇⁰ = L⁰ − A U⁰.

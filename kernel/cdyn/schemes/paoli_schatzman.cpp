@@ -45,6 +45,17 @@ class PaoliSchatzman final : public StepQPScheme {
     return stats;
   }
 
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    m.store_if_any("U_prev", U_prev_);  // (none before the first step)
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    U_prev_ = m.vector_or_empty("U_prev");
+  }
+
   Energy energy(const State& s) const override {
     if (U_prev_.size() == 0) return StepQPScheme::energy(s);  // before the first step
     // ½ U^{n+1}ᵀ A Uⁿ − Lᵀ(U^{n+1} + Uⁿ)/2 on the full fields (Dirichlet values included).

@@ -83,12 +83,33 @@ void StepQPScheme::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorX
     }
     // a condensed unknown is bounded now: back to the full QP (the warm start's indices
     // were those of the condensed one)
-    qp_.S = condensation_->S();
-    condensation_.reset();
-    has_last_ = false;
+    end_condensation();
   }
   qp_.lower = lower;
   qp_.upper = upper;
+}
+
+void StepQPScheme::end_condensation() {
+  qp_.S = condensation_->S();
+  qp_.lower = p_.lower;
+  qp_.upper = p_.upper;
+  condensation_.reset();
+  has_last_ = false;
+}
+
+SchemeMemory StepQPScheme::memory() const {
+  SchemeMemory m;
+  m.numbers["condensed"] = condensation_ ? 1.0 : 0.0;
+  store_warm_start(m, "step_qp", last_, has_last_);
+  return m;
+}
+
+void StepQPScheme::restore(const SchemeMemory& m) {
+  solver_.clear();
+  // a condensation ended by a bound stays ended (set_bounds); the factors a_, m_ are
+  // those of a whole step between steps, as build() made them
+  if (m.number("condensed") == 0.0 && condensation_) end_condensation();
+  has_last_ = load_warm_start(m, "step_qp", last_);
 }
 
 void StepQPScheme::constrain_at(double t) {

@@ -27,6 +27,10 @@ class StepQPScheme : public TimeScheme {
  public:
   // J(Uⁿ, Vⁿ) = ½ Vᵀ C V + ½ UᵀAU − LᵀU of the full field.
   Energy energy(const State& s) const override;
+  // The step QP's warm start and whether its bubbles are still condensed; the schemes
+  // add what they remember.
+  SchemeMemory memory() const override;
+  void restore(const SchemeMemory& m) override;
 
  protected:
   // (a, m): the undamped scheme's factors; the damping's share is added here for a step
@@ -75,6 +79,7 @@ class StepQPScheme : public TimeScheme {
 
  private:
   void build(double a, double m);
+  void end_condensation();  // the full QP from now on
 
   double a_ = 0.0, m_ = 0.0;
   bool condense_;

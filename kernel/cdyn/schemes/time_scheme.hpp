@@ -14,6 +14,7 @@
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/qp/step_solver.hpp"
 #include "cdyn/schemes/damping.hpp"
+#include "cdyn/schemes/scheme_memory.hpp"
 
 namespace cdyn {
 
@@ -82,6 +83,14 @@ class TimeScheme {
   virtual void initialize(State& s) { (void)s; }
   // How the full-step states get their massless part.
   virtual FullSteps full_steps() const { return FullSteps::Solved; }
+  // What the scheme remembers of the steps before (schemes/scheme_memory.hpp): with the
+  // State, everything needed to go on.
+  virtual SchemeMemory memory() const = 0;
+  // Goes on from a memory (this scheme's, or that of a scheme made alike in another
+  // run), clearing the step solver's caches: after restore(m) this scheme computes, from
+  // the State that went with m, the same steps bit for bit as any scheme made alike and
+  // restored from m.  InputError (parameter "memory") for a memory of another scheme.
+  virtual void restore(const SchemeMemory& m) = 0;
 };
 
 // The parameters of the schemes that have some (docs/schemes.md).
