@@ -39,7 +39,7 @@ const std::set<std::string> kKnownKeys = {
     "solver.condense", "solver.cg_iterations",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
-    "output.stress",
+    "output.stress",  "output.checkpoint_every",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 // The keys of each table of the array [[obstacles]] (elasticity: more rigid obstacles).
@@ -176,7 +176,7 @@ void Scene::set(const std::string& assignment) {
     order_[key] = names ? source_order(*names) : std::vector<std::string>{};
   }
   t->insert_or_assign(key.substr(start), *parsed.get("v"));
-  if (key == "name") name_ = value;
+  if (key == "name") name_ = string("name");  // (the value as TOML read it: --set name=\"x\" is x)
   // method.pair and method.mass are alternatives: overriding one replaces the other.
   if (key == "method.pair" || key == "method.mass") t->erase(key == "method.pair" ? "mass" : "pair");
   // Another mesh kind drops the keys the new kind does not take (else refused as

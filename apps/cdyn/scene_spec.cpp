@@ -348,6 +348,8 @@ void read_output(const Scene& s, SceneSpec& spec) {
   o.fields = s.boolean("output.fields", true);
   o.plots = s.boolean("output.plots", true);
   o.stress = s.boolean("output.stress", true);
+  o.checkpoint_every = s.integer("output.checkpoint_every", 0);
+  if (o.checkpoint_every < 0) throw InputError("output.checkpoint_every: must be 0 (no checkpoints) or more");
   for (const std::string& name : s.keys("output.probes"))
     o.probes.emplace_back(name, s.numbers("output.probes." + name));
   spec.exact_solution = s.string("exact.solution", "");
