@@ -23,7 +23,9 @@ namespace {
 class EnergyConserving final : public StepQPScheme {
  public:
   EnergyConserving(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense)
-      : StepQPScheme(p, solver, dt, 0.25, 1.0, condense) {}
+      : StepQPScheme(p, solver, dt, 0.25, 1.0, condense) {
+    remember("U_prev", &U_prev_);
+  }
   std::string name() const override { return "energy_conserving"; }
 
   StepStats step(State& s) override {
@@ -48,17 +50,6 @@ class EnergyConserving final : public StepQPScheme {
     s.U = U1;
     s.t += dt_;
     return stats;
-  }
-
-  SchemeMemory memory() const override {
-    SchemeMemory m = StepQPScheme::memory();
-    m.store_if_any("U_prev", U_prev_);  // (none before the first step)
-    return m;
-  }
-
-  void restore(const SchemeMemory& m) override {
-    StepQPScheme::restore(m);
-    U_prev_ = m.vector_or_empty("U_prev");
   }
 
   // E^{n+½}: kinetic ½ VᵀCV of V = C⁻¹B (U^{n+1} − Uⁿ) c, potential at Ū = (U^{n+1} + Uⁿ)/2.

@@ -23,19 +23,10 @@ namespace {
 class Newmark final : public StepQPScheme {
  public:
   Newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta, double gamma, bool condense)
-      : StepQPScheme(p, solver, dt, 1.0, 1.0 / beta, condense), beta_(beta), gamma_(gamma) {}
+      : StepQPScheme(p, solver, dt, 1.0, 1.0 / beta, condense), beta_(beta), gamma_(gamma) {
+    remember("Vdot", &Vdot_);
+  }
   std::string name() const override { return "newmark"; }
-
-  SchemeMemory memory() const override {
-    SchemeMemory m = StepQPScheme::memory();
-    m.store_if_any("Vdot", Vdot_);  // (none before the first step)
-    return m;
-  }
-
-  void restore(const SchemeMemory& m) override {
-    StepQPScheme::restore(m);
-    Vdot_ = m.vector_or_empty("Vdot");
-  }
 
   StepStats step(State& s) override {
     const double c = 1.0 / dt_, b = beta_;

@@ -22,6 +22,7 @@ class PaoliSchatzman final : public StepQPScheme {
  public:
   PaoliSchatzman(const ConstrainedProblem& p, StepSolver& solver, double dt, double e)
       : StepQPScheme(p, solver, dt, 0.0, 1.0), e_(e) {
+    remember("U_prev", &U_prev_);
     const SparseMatrix& M = *explicit_mass();
     if (M.nonZeros() == M.rows()) diagonal_ = M.diagonal();
   }
@@ -43,17 +44,6 @@ class PaoliSchatzman final : public StepQPScheme {
     s.U = U1;
     s.t += dt_;
     return stats;
-  }
-
-  SchemeMemory memory() const override {
-    SchemeMemory m = StepQPScheme::memory();
-    m.store_if_any("U_prev", U_prev_);  // (none before the first step)
-    return m;
-  }
-
-  void restore(const SchemeMemory& m) override {
-    StepQPScheme::restore(m);
-    U_prev_ = m.vector_or_empty("U_prev");
   }
 
   Energy energy(const State& s) const override {

@@ -101,6 +101,7 @@ SchemeMemory StepQPScheme::memory() const {
   SchemeMemory m;
   m.numbers["condensed"] = condensation_ ? 1.0 : 0.0;
   store_warm_start(m, "step_qp", last_, has_last_);
+  for (const auto& [name, v] : remembered_) m.store_if_any(name, *v);
   return m;
 }
 
@@ -110,6 +111,7 @@ void StepQPScheme::restore(const SchemeMemory& m) {
   // those of a whole step between steps, as build() made them
   if (m.number("condensed") == 0.0 && condensation_) end_condensation();
   has_last_ = load_warm_start(m, "step_qp", last_);
+  for (const auto& [name, v] : remembered_) *v = m.vector_or_empty(name);
 }
 
 void StepQPScheme::constrain_at(double t) {

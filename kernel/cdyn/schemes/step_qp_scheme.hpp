@@ -18,6 +18,10 @@
 // QP.  SchemeParameters::condense = false solves the full QP instead.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "cdyn/qp/condensation.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 
@@ -60,6 +64,11 @@ class StepQPScheme : public TimeScheme {
   // problem's bounds are constant): t is the time level the scheme constrains.
   void constrain_at(double t);
 
+  // A vector the scheme keeps from the steps before (U^{n−1}, Newmark's V̇ⁿ), empty
+  // before the first step: memory() stores it under `name` and restore() reads it back.
+  // (The vector must live as long as the scheme: a member.)
+  void remember(const std::string& name, Eigen::VectorXd* v) { remembered_.emplace_back(name, v); }
+
   // The explicit M when the mass model has one (H^h = P0, classical models), or C when B = C.
   const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
 
@@ -88,6 +97,7 @@ class StepQPScheme : public TimeScheme {
   BoundQP qp_;
   QPResult last_;
   bool has_last_ = false;
+  std::vector<std::pair<std::string, Eigen::VectorXd*>> remembered_;
 };
 
 }  // namespace cdyn
