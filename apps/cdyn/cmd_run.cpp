@@ -143,11 +143,11 @@ Start resumed_start(const RunOptions& opt) {
 
 // A checkpoint's state must be one of this problem (a scene.toml that matches its
 // fingerprint builds the same problem; this guards the file's own consistency).
-void check_sizes(const RunCheckpoint& c, const Simulation& sim) {
+void check_sizes(const RunCheckpoint& c, const Simulation& sim, const std::filesystem::path& out) {
   const ConstrainedProblem& p = sim.problem;
   if (c.state.U.size() != p.n_free() || c.state.V.size() != p.mass->n_velocity() ||
       c.state.reaction.size() != p.n_free() || c.rate.size() != p.W->n_dofs() || c.step < 0 || c.step > sim.n_steps)
-    throw InputError((checkpoint_dir(".") / "state.bin").string() + ": not a valid checkpoint of this run's problem");
+    throw InputError((checkpoint_dir(out) / "state.bin").string() + ": not a valid checkpoint of this run's problem");
 }
 
 }  // namespace
@@ -169,7 +169,7 @@ int cmd_run(const RunOptions& opt) {
   Start start = opt.resume.empty() ? fresh_start(opt) : resumed_start(opt);
   const std::optional<RunCheckpoint>& resume = start.checkpoint;
   Simulation sim = make_simulation(start.scene);
-  if (resume) check_sizes(*resume, sim);
+  if (resume) check_sizes(*resume, sim, start.out);
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
   const std::vector<std::string> warnings = run_warnings(sim);
