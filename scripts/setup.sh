@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# scripts/setup.sh — install every Debian package cdyn needs, then configure and
-# build into build/.  Idempotent: packages already present are not reinstalled,
-# and the build is incremental.  Runs as root on a fresh Debian 12 machine
-# (uses sudo when not root).
+# scripts/setup.sh — install every Debian package cdyn needs, configure and build
+# into build/, and install the Python module for /usr/bin/python3.  Idempotent:
+# packages already present are not reinstalled, and the build is incremental.  Runs as
+# root on a fresh Debian 12 machine (uses sudo when not root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,6 +22,8 @@ packages=(
   libgtest-dev libgmock-dev googletest     # unit tests
   libbenchmark-dev                         # bench/
   python3 python3-matplotlib python3-meshio python3-numpy python3-getfem  # plots, VTU check, GetFEM reference
+  pybind11-dev python3-pybind11 python3-dev python3-scipy  # the Python module cdyn (docs/python.md)
+  python3-pytest python3-nbconvert python3-ipykernel       # its tests and notebooks (label python)
   freefem++ libfreefem++                   # independent reference numbers
 )
 
@@ -30,3 +32,11 @@ scripts/install_missing.sh setup "${packages[@]}"
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" >/dev/null
 cmake --build build -j"$jobs"
+
+# The Python module where Debian's /usr/bin/python3 finds it (PREFIX/lib/python3.X/
+# dist-packages, PREFIX = /usr/local): `import cdyn` from anywhere (docs/python.md).
+if [ -f build/python/cdyn/__init__.py ]; then
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO=sudo
+  $SUDO cmake --install build --component python >/dev/null
+  echo "setup: the Python module cdyn is installed for /usr/bin/python3"
+fi

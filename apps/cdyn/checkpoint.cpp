@@ -69,15 +69,16 @@ ImpactMonitor::Memory impact_memory(const std::vector<double>& v) {
 }
 
 std::vector<double> totals_values(const RunTotals& t) {
-  return {t.qp_iterations, t.qp_seconds, t.energy_iterations, t.max_kkt,    t.max_reconstruction_kkt,
-          t.max_violation, double(t.max_active), t.dissipated, t.wall_seconds, t.fields_seconds};
+  return {t.qp_iterations, t.qp_seconds,           t.energy_iterations, t.max_kkt,      t.max_reconstruction_kkt,
+          t.max_violation, double(t.max_active), t.dissipated,        t.wall_seconds, t.fields_seconds,
+          t.data_work};
 }
 
 RunTotals totals(const std::vector<double>& v) {
   RunTotals t;
   t.qp_iterations = v[0], t.qp_seconds = v[1], t.energy_iterations = v[2], t.max_kkt = v[3];
   t.max_reconstruction_kkt = v[4], t.max_violation = v[5], t.max_active = static_cast<int>(v[6]);
-  t.dissipated = v[7], t.wall_seconds = v[8], t.fields_seconds = v[9];
+  t.dissipated = v[7], t.wall_seconds = v[8], t.fields_seconds = v[9], t.data_work = v[10];
   return t;
 }
 
@@ -151,7 +152,7 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::strin
   c.E_initial = {E[0], E[1]};
   const std::vector<double>& drift = numbers(r, "drift", 2, file);
   c.drift_abs = drift[0], c.drift_half_sum = drift[1];
-  c.totals = totals(numbers(r, "totals", 10, file));
+  c.totals = totals(numbers(r, "totals", 11, file));
   for (auto [name, mark] :
        {std::pair{"journal.history", &c.history.history}, std::pair{"journal.contact", &c.history.contact}}) {
     const std::vector<std::int64_t>& m = integers(name, 2);

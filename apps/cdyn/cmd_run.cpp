@@ -33,6 +33,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/fields_output.hpp"
 #include "cdyn/post/contact_force.hpp"
+#include "cdyn/problems/data_work.hpp"
 #include "checkpoint.hpp"
 #include "commands.hpp"
 #include "derived_fields.hpp"
@@ -120,7 +121,7 @@ struct Start {
 };
 
 Start fresh_start(const RunOptions& opt) {
-  Scene scene = Scene::load(opt.scene);
+  Scene scene = Scene::load(opt.scene, opt.scene_text);
   for (const auto& a : command_line_paths(opt.sets)) scene.set(a);
   Start start{scene, scene_as_run(scene, opt.scene).dump(), opt.out, std::nullopt};
   if (start.out.empty()) start.out = std::filesystem::path("out") / scene.name();
@@ -130,7 +131,7 @@ Start fresh_start(const RunOptions& opt) {
 // `--resume DIR`: the scene is DIR/scene.toml as the run wrote it, and the checkpoint
 // must have been written for it (checkpoint.hpp).
 Start resumed_start(const RunOptions& opt) {
-  if (!opt.scene.empty() || !opt.sets.empty() || !opt.out.empty())
+  if (!opt.scene.empty() || !opt.scene_text.empty() || !opt.sets.empty() || !opt.out.empty())
     throw InputError("--resume: the run's scene is DIR/scene.toml and its outputs go to DIR: give no SCENE, --set "
                      "or --out with it");
   const std::filesystem::path out = opt.resume;
@@ -172,7 +173,7 @@ int cmd_run(const RunOptions& opt) {
   if (resume) check_sizes(*resume, sim, start.out);
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
-  const std::vector<std::string> warnings = run_warnings(sim);
+  std::vector<std::string> warnings = run_warnings(sim);
   if (opt.warnings)
     for (const std::string& w : warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
 
@@ -199,11 +200,20 @@ int cmd_run(const RunOptions& opt) {
   Eigen::VectorXd rate = resume ? resume->rate : Eigen::VectorXd::Zero(p.W->n_dofs());
   Eigen::VectorXd force_xy = reaction_xy(p, s.reaction);  // the last step's reaction in (x, y), for every output
 
-  auto record = [&](int step, const StepStats& st, const Energy& E) {
+  // The work of the data in t (a load L(t), a moving obstacle) since t = 0: the scheme's
+  // own balance when it keeps one exactly (discrete_gradient), else the midpoint
+  // quadrature of problems/data_work.hpp; J is balanced against it (and against the
+  // damping's work W_d).
+  auto add_data_work = [&](const StepStats& st, double t_before, const Eigen::VectorXd& U_before) {
+    if (!has_data_in_t(p)) return;
+    totals.data_work += st.external_work ? *st.external_work
+                                         : data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), s.reaction);
+  };
+  auto record = [&](int step, const StepStats& st, double step_seconds, const Energy& E) {
     E_final = E.total();
-    drift.observe(E, totals.dissipated);
+    drift.observe(E, totals.data_work, totals.dissipated);
     force_xy = reaction_xy(p, s.reaction);
-    history.record(step, s, st, E, totals.dissipated, rate, force_xy);
+    history.record(step, s, st, step_seconds, E, {totals.dissipated, totals.data_work}, rate, force_xy);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -239,7 +249,7 @@ int cmd_run(const RunOptions& opt) {
     last_checkpoint = n;
   };
   if (!resume) {
-    record(0, StepStats{}, E_initial);
+    record(0, StepStats{}, 0.0, E_initial);
     if (fields) write_fields(0);
   }
 
@@ -251,7 +261,9 @@ int cmd_run(const RunOptions& opt) {
   InterruptGuard guard;
   for (int n = first; n <= sim.n_steps && !interrupted(); ++n) {
     const Eigen::VectorXd U_old = s.U;
+    const double t_old = s.t;
     StepStats st;
+    double step_seconds = 0.0;  // the scheme's step: the QP and everything around it
     Energy E;
     // Everything non-finite born here is a numerical failure, not bad input: the data
     // were checked before the loop, so a step QP refusing an infinite r (its input
@@ -265,7 +277,9 @@ int cmd_run(const RunOptions& opt) {
                            (out / "history.csv").string());
     };
     try {
+      const auto ts = Clock::now();
       st = sim.scheme->step(s);
+      step_seconds = seconds_since(ts);
       if (!s.U.allFinite() || !s.V.allFinite()) throw NumericalError("the solution is not finite (NaN or Inf)");
       E = sim.scheme->energy(s);
       if (!std::isfinite(E.total())) throw NumericalError("the energy is not finite (the solution blew up)");
@@ -280,7 +294,8 @@ int cmd_run(const RunOptions& opt) {
     const Eigen::VectorXd du = p.global(s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
     totals.add(st, p.max_violation(s.U, s.t));
-    record(n, st, E);
+    add_data_work(st, t_old, U_old);
+    record(n, st, step_seconds, E);
     steps_done = n;
     if (fields && (n % sim.output_every == 0 || n == sim.n_steps)) write_fields(n);
     if (checkpoint_every > 0 && n % checkpoint_every == 0 && n < sim.n_steps) checkpoint(n);
@@ -299,6 +314,13 @@ int cmd_run(const RunOptions& opt) {
   history.close();
   if (fields) fields->finish();
 
+  if (sim.has_obstacle) {
+    const std::string w = penetration_warning(sim, history.max_penetration(), totals.max_violation);
+    if (!w.empty()) {
+      warnings.push_back(w);
+      if (opt.warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
+    }
+  }
   const RunOutcome outcome{sim, out, s, steps_done, partial, resume ? resume->step : -1, E0, E_final, drift, totals,
                            history, warnings, u_exact};
   const nlohmann::ordered_json summary = run_summary(outcome);

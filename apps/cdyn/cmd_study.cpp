@@ -113,7 +113,7 @@ std::string run_label(const RunResult& r) {
 }
 
 void run_one(const StudyOptions& opt, const fs::path& dir, const ErrorMeasure& measure, RunResult& r) {
-  RunOptions run{opt.scene, dir.string(), r.sets, true, false, ""};
+  RunOptions run{opt.scene, dir.string(), r.sets, true, false, opt.scene_text, ""};
   try {
     cmd_run(run);  // 130 when interrupted: summary.json says partial
   } catch (const NumericalError& e) {
@@ -193,7 +193,7 @@ int cmd_study(const StudyOptions& opt) {
     for (std::size_t i = 0; i + 1 < varies.size(); ++i)
       if (varies[i].key == varies.back().key) throw InputError("--vary " + varies.back().key + ": given twice");
   }
-  Scene base = Scene::load(opt.scene);
+  Scene base = Scene::load(opt.scene, opt.scene_text);
   // Plots of each run cost a python start each, field files hundreds of megabytes over
   // a study: off unless asked for (--fields, or a --set turning them on).
   std::vector<std::string> common = {"output.plots=false"};

@@ -18,21 +18,12 @@
 
 namespace cdyn::app {
 
-int cmd_wellposed(const WellposedOptions& opt) {
-  Scene scene = Scene::load(opt.scene);
-  for (const auto& a : opt.sets) scene.set(a);
-  const Simulation sim = make_simulation(scene);
+nlohmann::ordered_json wellposed_rows(const Simulation& sim) {
   const WellPosednessSetup setup = wellposedness_setup(sim);  // elasticity: 2 components, the plane's normal
-
   // The pairs of the seed's experiments, in its order, then the classical masses (on P1).
   const std::vector<std::string> specs = {"P1/P1",      "P1/P0",  "P1+/P0",       "P1+/P1",
                                           "P2/P1",      "consistent", "lumped", "redistributed"};
-
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  if (!opt.json)
-    std::printf("condition (12) on %s (%d vertices, %d constraints)\n%-14s %7s %7s %9s %6s %12s  %s\n",
-                sim.scene_name.c_str(), sim.mesh->n_vertices(), static_cast<int>(setup.constrained_vertices.size()),
-                "pair", "N_W", "N_H", "dimKerB", "N_g", "beta", "satisfied");
   for (const std::string& spec : specs) {
     nlohmann::ordered_json row;
     row["pair"] = spec;
@@ -47,16 +38,37 @@ int cmd_wellposed(const WellposedOptions& opt) {
       row["beta"] = w.beta;
       row["satisfied"] = w.satisfied;
       row["method"] = w.method;
-      if (!opt.json)
-        std::printf("%-14s %7d %7d %9d %6d %12.4e  %s\n", spec.c_str(), w.n_W, w.n_H, w.dim_ker_B, w.n_g, w.beta,
-                    w.satisfied ? "yes" : "no");
     } catch (const std::runtime_error& e) {  // InputError (does not apply), NumericalError
       row["not_computed"] = e.what();
-      if (!opt.json) std::printf("%-14s  not computed: %s\n", spec.c_str(), e.what());
     }
     rows.push_back(row);
   }
-  if (opt.json) std::cout << rows.dump(2) << "\n";
+  return rows;
+}
+
+int cmd_wellposed(const WellposedOptions& opt) {
+  Scene scene = Scene::load(opt.scene, opt.scene_text);
+  for (const auto& a : opt.sets) scene.set(a);
+  const Simulation sim = make_simulation(scene);
+  const WellPosednessSetup setup = wellposedness_setup(sim);
+  if (!opt.json)
+    std::printf("condition (12) on %s (%d vertices, %d constraints)\n%-14s %7s %7s %9s %6s %12s  %s\n",
+                sim.scene_name.c_str(), sim.mesh->n_vertices(), static_cast<int>(setup.constrained_vertices.size()),
+                "pair", "N_W", "N_H", "dimKerB", "N_g", "beta", "satisfied");
+  const nlohmann::ordered_json rows = wellposed_rows(sim);
+  if (opt.json) {
+    std::cout << rows.dump(2) << "\n";
+    return 0;
+  }
+  for (const auto& row : rows) {
+    const std::string pair = row["pair"];
+    if (row.contains("not_computed"))
+      std::printf("%-14s  not computed: %s\n", pair.c_str(), row["not_computed"].get<std::string>().c_str());
+    else
+      std::printf("%-14s %7d %7d %9d %6d %12.4e  %s\n", pair.c_str(), row["N_W"].get<int>(), row["N_H"].get<int>(),
+                  row["dim_ker_B"].get<int>(), row["N_g"].get<int>(), row["beta"].get<double>(),
+                  row["satisfied"].get<bool>() ? "yes" : "no");
+  }
   return 0;
 }
 

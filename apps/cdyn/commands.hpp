@@ -26,6 +26,7 @@ struct RunOptions {
   std::vector<std::string> sets;   // key=value overrides
   bool quiet = false;
   bool warnings = true;            // print the run's warnings on stderr (cdyn study prints its own)
+  std::string scene_text;          // not empty: the scene itself as TOML text, `scene` its source's name
   std::string resume;              // a run directory to resume (then no scene, sets or out)
 };
 int cmd_run(const RunOptions& options);
@@ -45,6 +46,7 @@ struct StudyOptions {
   std::vector<std::string> sets;   // applied to every run, before the varied values
   std::string error = "auto";      // the error measure (study_error.hpp)
   bool fields = false;             // the runs write their field files
+  std::string scene_text;          // as RunOptions::scene_text
 };
 int cmd_study(const StudyOptions& options);
 
@@ -54,8 +56,13 @@ struct WellposedOptions {
   std::string scene;
   std::vector<std::string> sets;
   bool json = false;
+  std::string scene_text;          // as RunOptions::scene_text
 };
 int cmd_wellposed(const WellposedOptions& options);
+
+// The rows of `cdyn wellposed --json`: condition (12) on the simulation's mesh and
+// constraints for every pair and classical mass model.
+nlohmann::ordered_json wellposed_rows(const Simulation& sim);
 
 // The setup of condition (12) for a simulation: its Dirichlet parts, constrained
 // vertices and, for elasticity, two components and the plane's normal.  InputError

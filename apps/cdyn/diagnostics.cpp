@@ -53,6 +53,18 @@ std::vector<std::string> run_warnings(const Simulation& sim) {
   return out;
 }
 
+std::string penetration_warning(const Simulation& sim, double max_penetration, double max_violation) {
+  // Beyond round-off of the coordinates: a billionth of the mesh size.
+  if (!(max_penetration > max_violation + 1e-9 * sim.mesh->h_max())) return "";
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the boundary went %.3g into an obstacle (max_penetration) where the constrained vertices went %.3g: "
+                "a part not in obstacle.where, or a vertex held by another obstacle, passed through "
+                "(docs/scenes.md, \"Obstacles\"; obstacle.where = \"boundary\" constrains the whole boundary)",
+                max_penetration, max_violation);
+  return text;
+}
+
 void infeasible_initial_state(const Simulation& sim, double violation) {
   const std::string by = " (by " + std::to_string(violation) + ")";
   const ConstrainedProblem& p = sim.problem;

@@ -20,6 +20,12 @@ namespace cdyn::app {
 // dynamics (fine for a quasi-static run, as the Hertz scene's).
 std::vector<std::string> run_warnings(const Simulation& sim);
 
+// After the run: a warning when the boundary went into an obstacle (max_penetration,
+// the whole boundary against every obstacle) deeper than the constrained vertices did
+// (max_violation): a part of the body not in `where`, or a vertex held by another
+// obstacle, passed through.  Empty otherwise.
+std::string penetration_warning(const Simulation& sim, double max_penetration, double max_violation);
+
 // Throws the InputError for an initial state that violates the obstacle by
 // `violation`.  It names initial.u, or the normal of a plane (obstacle.normal,
 // obstacles[k].normal) when all the plane's contact vertices lie on its other side:

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cdyn/post/contact_force.hpp"
+#include "cdyn/problems/data_work.hpp"
 
 namespace cdyn::app {
 
@@ -48,6 +49,7 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
                  const std::optional<HistoryMemory>& resume)
     : sim_(sim),
       damped_(sim.spec.time.parameters.damping.active()),
+      data_in_t_(has_data_in_t(sim.problem)),
       csv_(out / "history.csv", journal_dir.empty() ? journal_dir : journal_dir / "history.csv",
            mark(resume, &HistoryMemory::history)) {
   if (resume) {
@@ -55,7 +57,7 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
     max_penetration_ = resume->max_penetration;
   }
   std::ostringstream csv;  // the header (a resumed run has it among the rows taken back)
-  csv << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s";
+  csv << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s,step_s";
   if (damped_) csv << ",dissipated";
   if (sim.components == 2) {
     momentum_.emplace(sim.problem);
@@ -67,6 +69,7 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
       csv << ",penetration";
     }
   }
+  if (data_in_t_) csv << ",data_work";
   for (const auto& pr : sim.probes)
     for (const std::string& c : probe_columns(sim, pr)) csv << "," << c;
   csv << "\n";
@@ -75,12 +78,12 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
   csv_.end_rows();
 }
 
-void History::record(int step, const State& s, const StepStats& st, const Energy& E, double dissipated,
-                     const Eigen::VectorXd& rate, const Eigen::VectorXd& reaction_xy) {
+void History::record(int step, const State& s, const StepStats& st, double step_seconds, const Energy& E,
+                     const Works& works, const Eigen::VectorXd& rate, const Eigen::VectorXd& reaction_xy) {
   std::ostream& csv = csv_.rows();
   csv << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
-      << st.qp_iterations << "," << st.qp_seconds;
-  if (damped_) csv << "," << dissipated;
+      << st.qp_iterations << "," << st.qp_seconds << "," << step_seconds;
+  if (damped_) csv << "," << works.dissipated;
   const ConstrainedProblem& p = sim_.problem;
   const Eigen::VectorXd U_full = p.full(s.U);
   if (momentum_) {
@@ -95,6 +98,7 @@ void History::record(int step, const State& s, const StepStats& st, const Energy
       csv << "," << depth;
     }
   }
+  if (data_in_t_) csv << "," << works.data;
   for (const auto& pr : sim_.probes)
     for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv << "," << v;
   csv << "\n";

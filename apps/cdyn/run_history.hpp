@@ -34,10 +34,16 @@ class History {
   History(const Simulation& sim, const std::filesystem::path& out, const std::filesystem::path& journal_dir,
           const std::optional<HistoryMemory>& resume = {});
 
-  // The row of a step.  dissipated: the damping's work W_d from t = 0; rate: the
+  // The works from t = 0 the energy is balanced against (each a column only when there is one).
+  struct Works {
+    double dissipated = 0.0;  // W_d, the Rayleigh damping's
+    double data = 0.0;        // W, the data in t's (problems/data_work.hpp)
+  };
+
+  // The row of a step.  step_seconds: the wall time of the scheme's step; rate: the
   // displacement rate over the step on all dofs; reaction_xy: the step's reaction in
   // (x, y) (post/contact_force.hpp).
-  void record(int step, const State& s, const StepStats& st, const Energy& E, double dissipated,
+  void record(int step, const State& s, const StepStats& st, double step_seconds, const Energy& E, const Works& works,
               const Eigen::VectorXd& rate, const Eigen::VectorXd& reaction_xy);
 
   // The rows so far into the journals; the memory for a checkpoint.
@@ -54,7 +60,8 @@ class History {
 
  private:
   const Simulation& sim_;
-  bool damped_;  // the column `dissipated`
+  bool damped_;    // the column `dissipated`
+  bool data_in_t_;  // the column `data_work`
   CsvOutput csv_;
   std::optional<LinearMomentum> momentum_;
   std::optional<ContactHistory> contact_;

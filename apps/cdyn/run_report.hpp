@@ -21,15 +21,18 @@ namespace cdyn::app {
 // From rest (J0 = 0: a drop, a load applied from t > 0) the kinetic and potential
 // energies mirror each other, E_kin ≈ −E_pot, and E_scale is the energy they exchange.
 // It vanishes only when E_kin = E_pot = 0 at every step, where J ≡ 0: rel() is then 0.
-// With Rayleigh damping the conserved quantity is J + W_d, W_d ≥ 0 the work the damping
-// has done so far (docs/schemes.md): the drift is max |J + W_d − J0|.
+//
+// With data in t the energy is balanced against the work W the data did on the body
+// (problems/data_work.hpp), and with Rayleigh damping against the work W_d ≥ 0 the
+// damping has taken (docs/schemes.md): the drift is then max |J + W_d − J0 − W|, the
+// energy the scheme made or lost on its own.
 class EnergyDrift {
  public:
   explicit EnergyDrift(const Energy& E0) : J0_(E0.total()) { observe(E0); }
   // One carried over from a checkpoint (its J0(), abs() and half_sum()).
   EnergyDrift(double J0, double abs, double half_sum) : J0_(J0), abs_(abs), half_sum_(half_sum) {}
-  void observe(const Energy& E, double dissipated = 0.0) {
-    abs_ = std::max(abs_, std::abs(E.total() + dissipated - J0_));
+  void observe(const Energy& E, double work = 0.0, double dissipated = 0.0) {
+    abs_ = std::max(abs_, std::abs(E.total() + dissipated - J0_ - work));
     half_sum_ = std::max(half_sum_, 0.5 * (std::abs(E.kinetic) + std::abs(E.potential)));
   }
   double abs() const { return abs_; }
@@ -50,6 +53,7 @@ struct RunTotals {
   double max_kkt = 0, max_reconstruction_kkt = 0, max_violation = 0;
   int max_active = 0;
   double dissipated = 0;       // W_d, the work of the Rayleigh damping from t = 0
+  double data_work = 0;        // W, the work of the data in t from t = 0 (problems/data_work.hpp)
   double wall_seconds = 0;     // the time loop, without the field files: of the steps before this process
   double fields_seconds = 0;   // the field files
 

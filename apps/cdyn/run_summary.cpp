@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "cdyn/problems/data_work.hpp"
 #include "commands.hpp"
 #include "exact_solution.hpp"
 
@@ -40,6 +41,7 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   const RayleighDamping& damping = sim.spec.time.parameters.damping;
   j["damping"] = damping.active() ? nlohmann::ordered_json{{"alpha", damping.alpha}, {"beta", damping.beta}}
                                   : nlohmann::ordered_json();
+  if (has_data_in_t(p)) j["data_work"] = totals.data_work;  // the drift is then of J + W_d − J0 − data_work
   j["dissipated_work"] = totals.dissipated;  // W_d(T): J(T) + W_d(T) = J0 for a conservative scheme
   j["max_violation"] = totals.max_violation;
   j["max_active"] = totals.max_active;
@@ -73,14 +75,19 @@ void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, c
   const std::string label = r.partial ? "INTERRUPTED after step " + std::to_string(r.steps_done) + " of " +
                                             std::to_string(sim.n_steps) + " (partial results)"
                                       : "";
-  char energy[300];
+  char energy[400];
   const bool damped = sim.spec.time.parameters.damping.active();
-  const char* J = damped ? "J + W_d" : "J";  // with damping, the balance J + W_d = J0
+  const bool worked = has_data_in_t(p);  // J balanced against the data's work W
+  // the balance: J + W_d = J0 + W (W_d the damping's work, W the data's)
+  const std::string balance = std::string(damped ? "J + W_d - J0" : "J - J0") + (worked ? " - W" : "");
   if (drift.scale_is_J0())
-    std::snprintf(energy, sizeof energy, "max |%s - J0|/|J0| = %.3e", J, drift.rel());
+    std::snprintf(energy, sizeof energy, "max |%s|/|J0| = %.3e", balance.c_str(), drift.rel());
   else  // J0 = 0 (a start from rest) or small against the energies exchanged
-    std::snprintf(energy, sizeof energy, "max |%s - J0| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
-                  J, drift.abs(), drift.rel(), drift.scale());
+    std::snprintf(energy, sizeof energy, "max |%s| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
+                  balance.c_str(), drift.abs(), drift.rel(), drift.scale());
+  if (worked)
+    std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy),
+                  " with W = %.6g the work of the data in t", r.totals.data_work);
   if (damped)
     std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy), "; damping dissipated W_d = %.6g",
                   r.totals.dissipated);

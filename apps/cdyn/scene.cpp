@@ -36,7 +36,7 @@ const std::set<std::string> kKnownKeys = {
     "time.beta",      "time.gamma",     "time.restitution", "time.reconstruct", "time.energy_tol",
     "damping.alpha",  "damping.beta",
     "solver.name",    "solver.tol",     "solver.max_iterations",
-    "solver.condense", "solver.cg_iterations",
+    "solver.condense", "solver.cg_iterations", "solver.free_block",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
     "output.stress",  "output.checkpoint_every",
@@ -119,6 +119,10 @@ Scene Scene::load(const std::string& path) {
   text << in.rdbuf();
   if (!in) throw InputError(path + ": cannot read the scene file");
   return from_string(text.str(), path);
+}
+
+Scene Scene::load(const std::string& path, const std::string& text) {
+  return text.empty() ? load(path) : from_string(text, path);
 }
 
 void Scene::validate(const toml::table& t, const std::string& prefix) const {

@@ -20,6 +20,9 @@ class Scene {
   // Reads a scene file; an empty path gives the embedded default scene (the seed's
   // membrane experiment).
   static Scene load(const std::string& path);
+  // The scene of a command: the file `path` or, when `text` is not empty, the TOML text
+  // `text` with `path` naming its source (a scene built by a program: a Python dict).
+  static Scene load(const std::string& path, const std::string& text);
   static Scene from_string(const std::string& text, const std::string& source);
 
   // Applies one "key=value" override.

@@ -319,6 +319,9 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   v.options.max_iterations = s.integer("solver.max_iterations", 0);
   v.options.pdas_cg_iterations = s.integer("solver.cg_iterations", v.options.pdas_cg_iterations);
   if (v.options.pdas_cg_iterations < 0) throw InputError("solver.cg_iterations: must be 0 (no CG) or more");
+  v.options.pdas_free_block = s.number("solver.free_block", v.options.pdas_free_block);
+  if (!(v.options.pdas_free_block >= 0.0 && v.options.pdas_free_block <= 1.0))
+    throw InputError("solver.free_block: a fraction of the unknowns, in [0, 1]");
 }
 
 // units = "length, force, time", e.g. "mm, N, s".

@@ -36,6 +36,7 @@
 #include "cdyn/mass/rotated.hpp"
 // problems/
 #include "cdyn/problems/constrained_problem.hpp"
+#include "cdyn/problems/data_work.hpp"
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/problems/nodal_rotation.hpp"
 #include "cdyn/problems/oscillator.hpp"

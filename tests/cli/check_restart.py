@@ -10,8 +10,8 @@ memory holds Ψ(qⁿ) and two warm starts), the field series.
  1. The run uninterrupted: the reference.  Its checkpoint folder is gone at the end.
  2. The same run killed with SIGKILL once its first checkpoint exists, then
     `cdyn run --resume`: the history.csv rows are the reference's, every column but
-    the timing `solve_s` equal as text (17 digits: bit for bit); contact.csv, fields.pvd
-    and every fields/*.vtu byte for byte; summary.json's keys equal but the timings,
+    the timings `solve_s`, `step_s` equal as text (17 digits: bit for bit); contact.csv,
+    fields.pvd and every fields/*.vtu byte for byte; summary.json's keys equal but the timings,
     `written` and `resumed_at` (the checkpoint's step, a multiple of 50: at most 50 steps
     lost).
  3. The same run stopped by SIGINT (Ctrl-C): exit 130, a checkpoint of the last step
@@ -78,11 +78,11 @@ def compare(out, ref, what):
     rows = open(os.path.join(out, "history.csv")).read().splitlines()
     ref_rows = open(os.path.join(ref, "history.csv")).read().splitlines()
     header = ref_rows[0].split(",")
-    timing = header.index("solve_s")
-    strip = lambda line: [c for k, c in enumerate(line.split(",")) if k != timing]  # noqa: E731
+    timing = {header.index("solve_s"), header.index("step_s")}
+    strip = lambda line: [c for k, c in enumerate(line.split(",")) if k not in timing]  # noqa: E731
     check(len(rows) == len(ref_rows) == 3002, f"{what}: {len(rows)} history lines, expected 3002 (a header, steps 0 … 3000)")
     same = sum(strip(a) == strip(b) for a, b in zip(rows, ref_rows))
-    check(same == len(ref_rows), f"{what}: history.csv rows equal but solve_s ({same} of {len(ref_rows)})")
+    check(same == len(ref_rows), f"{what}: history.csv rows equal but solve_s, step_s ({same} of {len(ref_rows)})")
     check(filecmp.cmp(os.path.join(out, "contact.csv"), os.path.join(ref, "contact.csv"), shallow=False),
           f"{what}: contact.csv byte for byte")
     check(filecmp.cmp(os.path.join(out, "fields.pvd"), os.path.join(ref, "fields.pvd"), shallow=False),

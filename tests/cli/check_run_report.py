@@ -5,7 +5,8 @@ drift of a run from rest, its warnings, how much it wrote, and the output defaul
 Usage: check_run_report.py CDYN SOURCE_DIR WORKDIR
 
 - The Hertz scene starts at rest (J0 = 0): summary.json's E_rel_drift is a number, not
-  null, equal to E_abs_drift / E_scale with E_abs_drift = max |J - J0| and
+  null, equal to E_abs_drift / E_scale with E_abs_drift = max |J - J0 - W| (W the
+  work of its traction in t, history.csv's data_work) and
   E_scale = max(|J0|, max(E_kin + |E_pot|)/2) from history.csv, and the paragraph
   prints no "inf"; a run with energy (the membrane) keeps E_scale = |J0|, so that
   E_rel_drift is DESIGN.md's max |J - J0|/|J0|.
@@ -50,7 +51,7 @@ def run(out, *sets, scene=None):
 
 def drift(rows):
     J0 = rows[0]["E_total"]
-    absolute = max(abs(r["E_total"] - J0) for r in rows)
+    absolute = max(abs(r["E_total"] - J0 - r.get("data_work", 0.0)) for r in rows)
     scale = max(abs(J0), max(r["E_kin"] + abs(r["E_pot"]) for r in rows) / 2)
     return absolute, scale
 

@@ -53,6 +53,25 @@ if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK_DIR}/installed_run/summary.json)
   message(FATAL_ERROR "the installed cdyn did not run the default scene (${rc}): ${err}")
 endif()
 
+# The Python module (when built, -DPYTHON=...): installed under PREFIX/PYTHON_DIR, which
+# is on the interpreter's own path for its default prefix (/usr/local on Debian), and
+# imported from there alone it runs the default scene as the installed program does.
+if(PYTHON)
+  foreach(f __init__.py runs.py scenes.py)
+    if(NOT EXISTS ${prefix}/${PYTHON_DIR}/cdyn/${f})
+      message(FATAL_ERROR "the install tree lacks ${PYTHON_DIR}/cdyn/${f}")
+    endif()
+  endforeach()
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_DIR} PYTHONDONTWRITEBYTECODE=1
+                          ${PYTHON} ${SOURCE_DIR}/tests/install/check_python_module.py ${prefix}/${PYTHON_DIR}
+                          ${DEFAULT_PREFIX}/${PYTHON_DIR} installed_run
+                  WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the installed Python module failed (${rc}):\n${out}\n${err}")
+  endif()
+  message("${out}")
+endif()
+
 run("configuring the outside project" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/outside -B ${WORK_DIR}/build
     -DCMAKE_BUILD_TYPE=${CONFIG} -DCMAKE_PREFIX_PATH=${prefix} "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}")
 run("building the outside project" ${CMAKE_COMMAND} --build ${WORK_DIR}/build)

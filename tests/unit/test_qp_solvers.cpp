@@ -276,6 +276,43 @@ TEST(QPSolvers, PdasRowUpdatesGiveTheSameAnswerAsRefactorization) {
             << b.counters().factorizations << " factorizations + " << b.counters().row_updates << " row updates\n";
 }
 
+TEST(QPSolvers, PdasFreeBlockFactorGivesTheAnswerOfTheWholeFactor) {
+  // Resting contact: a body on the obstacle u ≥ 0 pushed onto it everywhere except in a
+  // patch that grows step by step (lift-off), so that most unknowns are held.  The
+  // factor of the free block S_II alone (QPOptions::pdas_free_block) and that of S̃ in
+  // S's pattern are two factorizations of the same reduced system: the same active sets
+  // and the same solution to round-off (asserted 1e-12 relative: both are direct solves
+  // of a system whose condition here is O(10)).
+  const int k = 40, n = k * k;
+  std::mt19937 gen(17);
+  BoundQP qp;
+  qp.S = grid_matrix(k, k, gen, true);
+  qp.lower = VectorXd::Zero(n);
+  qp.upper = VectorXd::Constant(n, inf);
+  QPOptions whole;
+  whole.pdas_free_block = 0.0;
+  whole.pdas_cg_iterations = 0;  // (CG off: this compares the factorizations)
+  QPOptions block = whole;
+  block.pdas_free_block = 1.0;
+  cdyn::PDASSolver a(whole), b(block);
+  QPResult ra, rb;
+  for (int step = 0; step < 6; ++step) {
+    const double radius = 3.0 + 2.0 * step;  // the lifted patch, in grid cells
+    qp.r = VectorXd::Constant(n, -1.0);
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i)
+        if (std::hypot(i - k / 2.0, j - k / 2.0) < radius) qp.r[j * k + i] = 5.0;
+    ra = a.solve(qp, step ? &ra : nullptr);
+    rb = b.solve(qp, step ? &rb : nullptr);
+    EXPECT_GT(static_cast<int>(rb.active.size()), n / 2);
+    EXPECT_EQ(ra.active, rb.active);
+    EXPECT_LE((ra.X - rb.X).lpNorm<Eigen::Infinity>(), 1e-12 * ra.X.lpNorm<Eigen::Infinity>());
+    EXPECT_LE(rb.kkt_residual, 1e-10);
+  }
+  // the free block was factorized (and analysed for each new free set)
+  EXPECT_GT(b.counters().analyses, a.counters().analyses);
+}
+
 TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   // A solver whose factor is that of S with no active bound (its first call had no
   // bounds), then the bounded QP solved again and again from its own solution, as in a

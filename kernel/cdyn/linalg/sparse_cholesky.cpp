@@ -18,6 +18,7 @@ struct SparseCholesky::Impl {
   cholmod_factor* L = nullptr;         // the current numeric factor
   std::vector<int> outer, inner;       // pattern of the analysed matrix
   std::vector<int> position;           // position[i] = row of L holding original unknown i
+  double flops = 0.0;                  // of a numeric factorization (the analysis's count)
   mutable cholmod_dense* X = nullptr;  // solve workspaces (cholmod_solve2)
   mutable cholmod_dense* Y = nullptr;
   mutable cholmod_dense* E = nullptr;
@@ -78,6 +79,7 @@ void SparseCholesky::analyze(const SparseMatrix& S) {
   cholmod_sparse A = Impl::view(S);
   m.symbolic = cholmod_analyze(&A, &m.common);
   m.check("analyze");
+  m.flops = m.common.fl;
   m.outer.assign(S.outerIndexPtr(), S.outerIndexPtr() + S.outerSize() + 1);
   m.inner.assign(S.innerIndexPtr(), S.innerIndexPtr() + S.nonZeros());
   const int n = static_cast<int>(S.rows());
@@ -138,6 +140,8 @@ void SparseCholesky::replace_by_identity(int i) {
 }
 
 double SparseCholesky::modification_flops() const { return impl_->common.modfl; }
+
+double SparseCholesky::factorization_flops() const { return impl_->flops; }
 
 bool SparseCholesky::restore(int i, const SparseMatrix& S, const std::vector<char>& keep) {
   Impl& m = *impl_;

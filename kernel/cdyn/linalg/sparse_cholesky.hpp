@@ -40,6 +40,9 @@ class SparseCholesky {
   // Floating-point operations of the last replace_by_identity() or restore(), as CHOLMOD
   // counts them (cholmod_common::modfl): what an active-set method weighs against a CG solve.
   double modification_flops() const;
+  // Floating-point operations of a numeric factorization of the analysed pattern
+  // (cholmod_common::fl of the last analyze()).
+  double factorization_flops() const;
 
  private:
   struct Impl;

@@ -88,7 +88,7 @@ BoundaryPenetration::BoundaryPenetration(const ConstrainedProblem& p) : p_(p) {
     for (int v : vertices_) {
       double scale = 1.0;  // (where φ has no gradient, e.g. a cylinder's axis, φ itself)
       try {
-        scale = obstacle_normal(o, mesh.vertices[v], h).scale;
+        scale = obstacle_normal(o, mesh.vertices[v], h, mesh.dim).scale;
       } catch (const InputError&) {
       }
       s.push_back(scale);

@@ -6,19 +6,21 @@
 
 namespace cdyn {
 
-const Eigen::VectorXd& ConstrainedProblem::full_load(double t) const {
-  if (cached_full_load_.size() == 0 || (!load_is_constant && t != cached_t_)) {
-    cached_full_load_ = L_full(t);
-    cached_load_ = local(bc->restrict(Eigen::VectorXd(cached_full_load_ - A_full * UD)));
-    cached_t_ = t;
-  }
-  return cached_full_load_;
+const ConstrainedProblem::CachedLoad& ConstrainedProblem::cached_load(double t) const {
+  for (int k = 0; k < load_cache_size_; ++k)
+    if (load_is_constant || load_cache_[k].t == t) return load_cache_[k];
+  CachedLoad& c = load_cache_[load_cache_next_];  // the oldest
+  load_cache_next_ = (load_cache_next_ + 1) % static_cast<int>(load_cache_.size());
+  load_cache_size_ = std::min(load_cache_size_ + 1, static_cast<int>(load_cache_.size()));
+  c.t = t;
+  c.full = L_full(t);
+  c.free = local(bc->restrict(Eigen::VectorXd(c.full - A_full * UD)));
+  return c;
 }
 
-const Eigen::VectorXd& ConstrainedProblem::load(double t) const {
-  full_load(t);
-  return cached_load_;
-}
+const Eigen::VectorXd& ConstrainedProblem::full_load(double t) const { return cached_load(t).full; }
+
+const Eigen::VectorXd& ConstrainedProblem::load(double t) const { return cached_load(t).free; }
 
 Eigen::VectorXd ConstrainedProblem::full(const Eigen::VectorXd& Uf) const {
   return R ? bc->extend(*R * Uf, UD) : bc->extend(Uf, UD);  // (no copy of Uf without R)

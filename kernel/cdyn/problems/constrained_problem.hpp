@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -68,7 +69,9 @@ struct ConstrainedProblem {
   int n_free() const { return static_cast<int>(A.rows()); }
 
   // (L(t) − A U_D)_f: the load seen by the free dofs (Rᵀ (L(t) − A U_D)_f).  A
-  // reference to the cache: valid until load() or full_load() is called with another t.
+  // reference to the cache of the last three times asked (a step needs L at tⁿ, t^{n+½}
+  // and t^{n+1}: the scheme's level and the data's work): valid until load() or
+  // full_load() has been called with three other times.
   const Eigen::VectorXd& load(double t) const;
 
   // The full coefficient vector P R U' + U_D (R U' = U' without a rotation).
@@ -87,7 +90,8 @@ struct ConstrainedProblem {
   // rotated problem gets rotated initial data.
   Eigen::VectorXd unknowns(const Eigen::VectorXd& U_full) const { return local(bc->restrict(U_full)); }
 
-  // L(t) on all dofs (assembled once when the load is constant, else once per t).
+  // L(t) on all dofs (assembled once when the load is constant, else once per t; the
+  // same cache as load()).
   const Eigen::VectorXd& full_load(double t) const;
 
   // ½ UᵀAU − LᵀU of the full field at time t.
@@ -102,8 +106,13 @@ struct ConstrainedProblem {
   double max_violation(const Eigen::VectorXd& Uf, double t = 0.0) const;
 
  private:
-  mutable double cached_t_ = 0.0;
-  mutable Eigen::VectorXd cached_full_load_, cached_load_;
+  struct CachedLoad {
+    double t = 0.0;
+    Eigen::VectorXd full, free;  // L(t) and (L(t) − A U_D)_f
+  };
+  const CachedLoad& cached_load(double t) const;
+  mutable std::array<CachedLoad, 3> load_cache_;
+  mutable int load_cache_size_ = 0, load_cache_next_ = 0;
 };
 
 }  // namespace cdyn

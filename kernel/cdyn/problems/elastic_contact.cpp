@@ -60,7 +60,7 @@ ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& 
   std::map<int, ConstrainedProblem::ContactNode> node_of;
   for (int k = 0; k < static_cast<int>(obstacles.size()); ++k)
     for (int v : mesh.part_vertices(obstacles[k].contact_parts)) {
-      const ObstacleNormal n = obstacle_normal(obstacles[k], mesh.vertices[v], h);
+      const ObstacleNormal n = obstacle_normal(obstacles[k], mesh.vertices[v], h, mesh.dim);
       const ConstrainedProblem::ContactNode c{v, k, n.n, n.scale};
       const auto it = node_of.find(v);
       if (it == node_of.end() || node_gap(obstacles, mesh.vertices[v], c, 0.0) >

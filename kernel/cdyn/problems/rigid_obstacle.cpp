@@ -32,13 +32,14 @@ RigidObstacle RigidObstacle::moving_plane(std::function<Point(double)> p, Point 
   return o;
 }
 
-ObstacleNormal obstacle_normal(const RigidObstacle& o, const Point& x, double h) {
+ObstacleNormal obstacle_normal(const RigidObstacle& o, const Point& x, double h, int dim) {
   if (o.gradient) return {o.gradient(x), 1.0};
   auto d = [&](Point e) {
     const Point a{x.x + h * e.x, x.y + h * e.y, x.z + h * e.z}, b{x.x - h * e.x, x.y - h * e.y, x.z - h * e.z};
     return (o.gap(a, 0.0) - o.gap(b, 0.0)) / (2 * h);
   };
-  const Point G{d({1, 0, 0}), d({0, 1, 0}), d({0, 0, 1})};
+  // in the mesh's own dimensions: a gap "z" has no gradient in the plane of a 2D body
+  const Point G{d({1, 0, 0}), dim > 1 ? d({0, 1, 0}) : 0.0, dim > 2 ? d({0, 0, 1}) : 0.0};
   const double s = std::hypot(G.x, G.y, G.z);
   if (!(s > 0.0) || !std::isfinite(s))
     throw InputError("gap", "the gap function has no gradient at (" + std::to_string(x.x) + ", " +

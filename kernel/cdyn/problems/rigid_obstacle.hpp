@@ -44,12 +44,12 @@ struct RigidObstacle {
 };
 
 // The unit outward normal n(x) = ∇φ(x, 0)/|∇φ(x, 0)| and |∇φ(x, 0)| (1 for a given
-// gradient); central differences with step h otherwise.  InputError naming the obstacle
-// where ∇φ vanishes.
+// gradient); central differences with step h in the first `dim` coordinates otherwise
+// (the mesh's dimension).  InputError naming the obstacle where ∇φ vanishes.
 struct ObstacleNormal {
   Point n;
   double scale = 1.0;
 };
-ObstacleNormal obstacle_normal(const RigidObstacle& o, const Point& x, double h);
+ObstacleNormal obstacle_normal(const RigidObstacle& o, const Point& x, double h, int dim);
 
 }  // namespace cdyn

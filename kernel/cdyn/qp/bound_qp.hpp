@@ -60,6 +60,11 @@ struct QPOptions {
   // since it was last (re)made.
   int pdas_cg_iterations = 80;
   int pdas_cg_resync = -1;
+  // pdas, explicit S: a (re)factorization for an active set that leaves at most this
+  // fraction of the unknowns free factorizes the free block S_II alone, with its own
+  // fill-reducing ordering, instead of S̃ in S's pattern (whose fill does not shrink with
+  // the free set); 0: never.  Resting contact, most unknowns on the obstacle.
+  double pdas_free_block = 0.5;
   double pgs_omega = 1.0;      // pgs: over-relaxation factor, 0 < ω < 2
   int pgs_check_every = 10;    // pgs: sweeps between two evaluations of the KKT residual
   bool ipopt_crossover = true;  // ipopt: finish by PDAS steps from Ipopt's active set if above tol

@@ -44,9 +44,9 @@
 // By the envelope theorem (Ψ is a minimum over W) ∂ₜΨ = −L'(t)·W + λ·∂ₜg at the
 // minimizer, with λ the reaction and g the active bound; the step takes it at the
 // midpoint, where the QP has both, with the data's increments over the step:
-//     Δ_tΨ = −(L(t^{n+1}) − L(tⁿ))·U^{n+½} + λ·(g(t^{n+1}) − g(tⁿ)),
-// and the discrete gradient asks ∇̄Ψ·Δq = Ψ(q^{n+1}, t^{n+1}) − Ψ(qⁿ, tⁿ) − Δ_tΨ, so
-// that H^{n+1} − Hⁿ = Δ_tΨ exactly, the discrete work of the data on the body
+//     Δ_tΨ = −(L(t^{n+1}) − L(tⁿ))·U^{n+½} + λ·(g(t^{n+1}) − g(tⁿ))
+// (problems/data_work.hpp), and the discrete gradient asks
+// ∇̄Ψ·Δq = Ψ(q^{n+1}, t^{n+1}) − Ψ(qⁿ, tⁿ) − Δ_tΨ, so that H^{n+1} − Hⁿ = Δ_tΨ exactly, the discrete work of the data on the body
 // (StepStats::external_work): a second-order quadrature of ∫ ∂ₜΨ dt, exact when L and g
 // are affine in t and the active set does not change (then β = 0 and the step is plain
 // midpoint, as without data in t).
@@ -61,48 +61,13 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
+#include "cdyn/problems/data_work.hpp"
 #include "cdyn/schemes/full_step.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
 
 namespace {
-
-// The increments of the data over a step: L(t^{n+1}) − L(tⁿ) on all dofs and
-// g(t^{n+1}) − g(tⁿ) of the lower and upper bounds (0 where a bound is infinite).
-struct DataIncrement {
-  Eigen::VectorXd dL, dlower, dupper;
-
-  // Δ_tΨ = −ΔL·U^{n+½} + λ·Δg, g the bound λ pushes against (λ > 0: lower, λ < 0: upper)
-  double work(const ConstrainedProblem& p, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction) const {
-    double w = dL.size() ? -dL.dot(p.full(X)) : 0.0;
-    for (Eigen::Index i = 0; i < reaction.size() && dlower.size(); ++i)
-      w += reaction[i] * (reaction[i] > 0 ? dlower[i] : dupper[i]);
-    return w;
-  }
-};
-
-DataIncrement data_increment(const ConstrainedProblem& p, double t0, double t1) {
-  DataIncrement d;
-  if (!p.load_is_constant) {
-    d.dL = p.full_load(t1);  // (a copy: full_load returns its one-time cache)
-    d.dL -= p.full_load(t0);
-  }
-  if (!p.bounds_are_constant()) {
-    Eigen::VectorXd lo0, up0, lo1, up1;
-    p.bounds(t0, lo0, up0);
-    p.bounds(t1, lo1, up1);
-    auto increment = [](const Eigen::VectorXd& a1, const Eigen::VectorXd& a0) {
-      Eigen::VectorXd d = a1 - a0;
-      for (Eigen::Index i = 0; i < d.size(); ++i)
-        if (!std::isfinite(d[i])) d[i] = 0.0;
-      return d;
-    };
-    d.dlower = increment(lo1, lo0);
-    d.dupper = increment(up1, up0);
-  }
-  return d;
-}
 
 class DiscreteGradient final : public StepQPScheme {
  public:
@@ -112,7 +77,7 @@ class DiscreteGradient final : public StepQPScheme {
         full_step_(std::move(full_step)),
         energy_tol_(parameters.energy_tol),
         tol_(parameters.tol),
-        autonomous_(p.load_is_constant && p.bounds_are_constant()) {}
+        autonomous_(!has_data_in_t(p)) {}
   std::string name() const override { return "discrete_gradient"; }
   FullSteps full_steps() const override { return FullSteps::Reconstructed; }
 
@@ -237,7 +202,7 @@ class DiscreteGradient final : public StepQPScheme {
     s.reaction = std::move(a.reaction);
     s.t += h;
     psi_ = a.psi1;
-    stats.external_work += a.work;
+    stats.external_work = stats.external_work.value_or(0.0) + a.work;
     stats.dissipated += a.dissipated;
     return true;
   }

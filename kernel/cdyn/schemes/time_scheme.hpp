@@ -7,6 +7,8 @@
 // result warm-starts the next.  Derivations: docs/schemes.md.
 #pragma once
 
+#include <optional>
+
 #include <Eigen/Core>
 #include <memory>
 #include <string>
@@ -42,9 +44,10 @@ struct StepStats {
   double reconstruction_kkt = 0.0;
   int energy_iterations = 0;  // discrete_gradient: step QPs solved (1 without a switch)
   int substeps = 0;           // discrete_gradient: halvings of dt at a stiff switch
-  // discrete_gradient with data in t (a load L(t), a moving obstacle): the step's
-  // H^{n+1} − Hⁿ, the discrete work of the data on the body (0 when nothing depends on t).
-  double external_work = 0.0;
+  // The step's work of the data in t on the body (a load L(t), a moving obstacle;
+  // problems/data_work.hpp), set by a scheme whose energy balances it exactly: with
+  // discrete_gradient H^{n+1} + W_d − Hⁿ = external_work (0 when nothing depends on t).
+  std::optional<double> external_work;
   // The work of the Rayleigh damping force over the step (schemes/damping.hpp), ≥ 0:
   // J^{n+1} + dissipated − Jⁿ is the contact's work (and the data's) for the midpoint
   // rules, 0 for discrete_gradient, ≤ 0 for backward Euler (docs/schemes.md).

@@ -54,6 +54,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   S_tilde_ = S_;
   factorize(S_, "S is not positive definite (CHOLMOD: the factorization breaks down");
   factor_held_.assign(n_, 0);
+  block_mode_ = false;
   updates_since_factorization_ = 0;
   cg_mode_ = cg_failed_ = false;
   cg_since_sync_ = 0;
@@ -71,12 +72,64 @@ void ExplicitReducedSystem::factorize(const SparseMatrix& matrix, const std::str
 }
 
 void ExplicitReducedSystem::refactorize(const HeldSet& held) {
-  replace_held_by_identity(S_, held, S_tilde_);
-  factorize(S_tilde_, "the reduced matrix S_II is not positive definite (breakdown");
+  const auto n_free = std::count(held.begin(), held.end(), 0);
+  block_mode_ = n_free <= opt_.pdas_free_block * n_;
+  if (block_mode_) {
+    factorize_free_block(held);
+  } else {
+    replace_held_by_identity(S_, held, S_tilde_);
+    factorize(S_tilde_, "the reduced matrix S_II is not positive definite (breakdown");
+  }
   factor_held_ = held;
   updates_since_factorization_ = 0;
   cg_mode_ = false;
   cg_since_sync_ = 0;
+}
+
+// S_II, the rows and columns of the free unknowns I (in increasing order, so that the
+// columns stay sorted), factorized with an analysis of its own: reused while I is the
+// same, new when it changed.
+void ExplicitReducedSystem::factorize_free_block(const HeldSet& held) {
+  std::vector<int> index(n_, -1);
+  free_.clear();
+  for (int i = 0; i < n_; ++i)
+    if (!held[i]) {
+      index[i] = static_cast<int>(free_.size());
+      free_.push_back(i);
+    }
+  const int m = static_cast<int>(free_.size());
+  std::vector<int> outer(m + 1, 0), inner;
+  std::vector<double> value;
+  for (int k = 0; k < m; ++k) {
+    for (SparseMatrix::InnerIterator it(S_, free_[k]); it; ++it)
+      if (index[it.row()] >= 0) {
+        inner.push_back(index[it.row()]);
+        value.push_back(it.value());
+      }
+    outer[k + 1] = static_cast<int>(inner.size());
+  }
+  S_II_ = Eigen::Map<const SparseMatrix>(m, m, static_cast<int>(inner.size()), outer.data(), inner.data(), value.data());
+  S_II_.makeCompressed();
+  if (!block_chol_.analyzed_for(S_II_)) {
+    block_chol_.analyze(S_II_);
+    ++counters_.analyses;
+  }
+  ScopeTimer timer(counters_.factorization_s);
+  const int minor = block_chol_.factorize(S_II_);
+  ++counters_.factorizations;
+  if (minor >= 0)
+    throw NumericalError("pdas: the reduced matrix S_II is not positive definite (breakdown at unknown " +
+                         std::to_string(free_[minor]) + ")");
+}
+
+// S̃ y = b with the factor of S_II: y_A = b_A, S_II y_I = b_I.
+Eigen::VectorXd ExplicitReducedSystem::solve_free_block(const Eigen::VectorXd& b) const {
+  Eigen::VectorXd b_I(free_.size());
+  for (std::size_t k = 0; k < free_.size(); ++k) b_I[k] = b[free_[k]];
+  const Eigen::VectorXd y_I = block_chol_.solve(b_I);
+  Eigen::VectorXd y = b;
+  for (std::size_t k = 0; k < free_.size(); ++k) y[free_[k]] = y_I[k];
+  return y;
 }
 
 // Brings the factor to `held` (row updates or a refactorization), leaving CG mode.
@@ -87,7 +140,8 @@ void ExplicitReducedSystem::sync_factor(const HeldSet& held) {
     if (held[i] != factor_held_[i]) (held[i] ? to_delete : to_add).push_back(i);
   const int changes = static_cast<int>(to_delete.size() + to_add.size());
   if (changes == 0) return;
-  if (changes > update_limit()) return refactorize(held);
+  // (the block factor has S_II's own ordering: no row updates on it)
+  if (block_mode_ || changes > update_limit()) return refactorize(held);
   ScopeTimer timer(counters_.row_update_s);
   for (int i : to_delete) {
     chol_.replace_by_identity(i);
@@ -139,9 +193,11 @@ bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
 bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   int changes = 0;
   for (int i = 0; i < n_; ++i) changes += held[i] != factor_held_[i];
-  if (changes > update_limit() || updates_measured_ == 0) return true;
   const double iterations = counters_.cg_solves > 0 ? double(counters_.cg_iterations) / counters_.cg_solves : 50.0;
   const double cg_flops = iterations * (2.0 * double(S_.nonZeros()) + 12.0 * n_);
+  // With the factor of S_II the alternative is a new one (of about the same size).
+  if (block_mode_) return block_chol_.factorization_flops() > cg_flops;
+  if (changes > update_limit() || updates_measured_ == 0) return true;
   return changes * (update_flops_ / updates_measured_) > cg_flops;
 }
 
@@ -193,7 +249,7 @@ Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, dou
     sync_factor(cg_held_);
   }
   ScopeTimer timer(counters_.solve_s);
-  y_last_ = chol_.solve(b);
+  y_last_ = block_mode_ ? solve_free_block(b) : chol_.solve(b);
   return y_last_;
 }
 

@@ -19,7 +19,12 @@
 //     factorization when the contact zone jumps;
 //   - once an active set has served three calls in a row the contact zone has settled,
 //     and the factor is brought to it (resync_due), so that the coming steps are one
-//     forward/back solve each again.
+//     forward/back solve each again;
+//   - when most unknowns are held (resting contact: a body lying on the obstacle), S̃
+//     in S's pattern still has the fill of the whole S, while the free block S_II alone,
+//     ordered by its own analysis, is much smaller: a refactorization for a set that
+//     leaves at most QPOptions::pdas_free_block of the unknowns free factorizes S_II
+//     (a new analysis when I changed; no row updates on it: CG, or a new block factor).
 // A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
 // stops at the first non-positive pivot: NumericalError naming the unknown) and is the
 // unconstrained solve of a cold start.
@@ -55,6 +60,8 @@ class ExplicitReducedSystem : public ReducedSystem {
  private:
   void factorize(const SparseMatrix& matrix, const std::string& what);
   void refactorize(const HeldSet& held);
+  void factorize_free_block(const HeldSet& held);
+  Eigen::VectorXd solve_free_block(const Eigen::VectorXd& b) const;
   void sync_factor(const HeldSet& held);
   int update_limit() const;
   bool resync_due(const HeldSet& held) const;
@@ -66,7 +73,12 @@ class ExplicitReducedSystem : public ReducedSystem {
   int n_ = 0;
   SparseMatrix S_, S_tilde_;              // the last S seen; S with the held set eliminated
   SparseCholesky chol_;
-  HeldSet factor_held_;                   // the held set chol_ currently factorizes
+  HeldSet factor_held_;                   // the held set the factor currently factorizes
+  // Most unknowns held (QPOptions::pdas_free_block): the factor is that of S_II alone.
+  bool block_mode_ = false;               // the factor is block_chol_'s, not chol_'s
+  std::vector<int> free_;                 // I, the free unknowns of S_II (increasing)
+  SparseMatrix S_II_;
+  SparseCholesky block_chol_;
   int updates_since_factorization_ = 0;
   // CG on S̃ for a held set other than the factor's (QPOptions::pdas_cg_iterations)
   bool cg_mode_ = false;                  // solve_tilde uses CG with cg_held_
