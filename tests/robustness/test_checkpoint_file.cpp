@@ -24,11 +24,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("cdyn_test_checkpoint_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+// The test's scratch folder, removed when the test process ends (ctest runs each test
+// in a process of its own).
+const fs::path& scratch_dir() {
+  static const struct Dir {
+    fs::path path = fs::temp_directory_path() / ("cdyn_test_checkpoint_" + std::to_string(::getpid()));
+    Dir() { fs::create_directories(path); }
+    ~Dir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  } dir;
+  return dir.path;
 }
+
+fs::path scratch(const std::string& name) { return scratch_dir() / name; }
 
 std::string read(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
