@@ -7,6 +7,8 @@ Writes RUN_DIR/plots/:
   energy.png   E_kin, E_pot and E_total = J against t (seed, Theorem 2), and below
                the drift (J - J0)/E_scale (summary.json's E_scale: |J0|, or for a run
                from rest the energy it exchanges), where conservation shows (or not);
+               with Rayleigh damping also the dissipated work W_d, and the drift of
+               J + W_d;
   probes.png   u@P and lambda@P against t for every probe P (when the scene has any);
   contact.png  the number of active constraints per step and, at the probes, the
                contact force -lambda@P (lambda <= 0 is the seed's multiplier);
@@ -81,6 +83,14 @@ def plot_energy(h, summary):
     top.plot(t, h["E_kin"], label="E_kin = ½VᵀCV")
     top.plot(t, h["E_pot"], label="E_pot = ½UᵀAU − LᵀU")
     top.plot(t, h["E_total"], "k", label="E_total = J")
+    # With Rayleigh damping the balance is J + W_d = J0: the dissipated work W_d
+    # (history.csv's `dissipated`) and J + W_d are drawn, and the drift is that of J + W_d.
+    W = h.get("dissipated", [0.0] * len(t))
+    balance = [e + w for e, w in zip(h["E_total"], W)]
+    name = "J + W_d" if "dissipated" in h else "J"
+    if "dissipated" in h:
+        top.plot(t, W, "k:", label="W_d, work of the damping")
+        top.plot(t, balance, "k--", label="J + W_d")
     top.set_ylabel("energy" + unit(summary, "energy"))
     legend(top)
     top.set_title(title(summary))
@@ -88,11 +98,11 @@ def plot_energy(h, summary):
     # summary.json's E_scale: |J0|, or for a start from rest (J0 = 0) the energy the run
     # exchanges; never a division by zero, never an absolute drift under a relative label.
     scale = summary.get("E_scale") or abs(E0) or 1.0
-    bottom.plot(t, [(e - E0) / scale for e in h["E_total"]], "k")
+    bottom.plot(t, [(e - E0) / scale for e in balance], "k")
     if scale == abs(E0):
-        bottom.set_ylabel("(J − J0)/|J0|")
+        bottom.set_ylabel("(%s − J0)/|J0|" % name)
     else:
-        bottom.set_ylabel("(J − J0)/E_scale")
+        bottom.set_ylabel("(%s − J0)/E_scale" % name)
         bottom.set_title("E_scale = max(E_kin + |E_pot|)/2 = %.4g (J0 = %.3g)" % (scale, E0), fontsize=8)
     bottom.set_xlabel("t" + unit(summary, "time"))
     bottom.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))

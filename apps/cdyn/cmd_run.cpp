@@ -27,23 +27,24 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "cdyn/atomic_file.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/fields_output.hpp"
 #include "cdyn/post/contact_force.hpp"
-#include "cdyn/post/contact_pressure.hpp"
-#include "cdyn/post/linear_momentum.hpp"
 #include "cdyn/problems/data_work.hpp"
+#include "checkpoint.hpp"
 #include "commands.hpp"
-#include "contact_history.hpp"
 #include "derived_fields.hpp"
 #include "embedded_scripts.hpp"
 #include "diagnostics.hpp"
 #include "exact_solution.hpp"
 #include "interrupt.hpp"
 #include "python_script.hpp"
+#include "run_history.hpp"
 #include "run_report.hpp"
+#include "run_summary.hpp"
 #include "simulation.hpp"
 
 namespace cdyn::app {
@@ -54,37 +55,10 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// The probe columns of history.csv: u, v and λ for a scalar field; for elasticity the
-// two components of u and v and the seed's normal multiplier λ_N ≤ 0.
-std::vector<std::string> probe_columns(const Simulation& sim, const Probe& pr) {
-  if (sim.components == 1) return {"u@" + pr.name, "v@" + pr.name, "lambda@" + pr.name};
-  return {"ux@" + pr.name, "uy@" + pr.name, "vx@" + pr.name, "vy@" + pr.name, "lambda@" + pr.name};
-}
-
-// The probe values of the current state, in the order of probe_columns: u (full
-// field), v (displacement rate over the last step) at the point, and λ at the vertex
-// nearest to it (scalar: the seed's multiplier; elasticity: λ_N = −F·n).
-std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::VectorXd& U_full,
-                          const Eigen::VectorXd& rate_full, const Eigen::VectorXd& reaction_xy) {
-  const FESpace& W = *sim.problem.W;
-  std::vector<double> out;
-  for (const Eigen::VectorXd* field : {&U_full, &rate_full})
-    for (int k = 0; k < sim.components; ++k) out.push_back(W.value_in_cell(*field, pr.where.cell, pr.where.xi, k));
-  const Point lambda = vertex_multiplier(sim.problem, reaction_xy, pr.vertex);
-  if (sim.components == 1) {
-    out.push_back(lambda.x);
-    return out;
-  }
-  Point n;  // the normal of the obstacle that constrains the vertex (λ = 0 elsewhere)
-  for (const auto& c : sim.problem.contact_nodes)
-    if (c.vertex == pr.vertex) n = c.normal;
-  out.push_back(lambda.x * n.x + lambda.y * n.y + 0.0);  // λ_N = λ·n (+ 0.0: no −0)
-  return out;
-}
-
-// A one-line progress report on a terminal, rewritten in place.
-void progress(int step, int n, double t, double drift, int active, double elapsed) {
-  const double eta = step > 0 ? elapsed * (n - step) / step : 0.0;
+// A one-line progress report on a terminal, rewritten in place (elapsed: the seconds
+// of the `done` steps this process has made).
+void progress(int step, int n, double t, double drift, int active, double elapsed, int done) {
+  const double eta = done > 0 ? elapsed * (n - step) / done : 0.0;
   std::fprintf(stderr, "\r  step %d/%d  t = %.4g  |J - J0|/E_scale = %.2e  active %d  ETA %.0f s   ", step, n, t, drift,
                active, eta);
   std::fflush(stderr);
@@ -100,11 +74,13 @@ std::string toml_string(const std::string& text) {
   return out + "\"";
 }
 
-// The scene as run, to be written next to the results: a relative mesh.file is made
-// absolute (by the rule of make_mesh: relative to the scene file's directory, or to
-// the current directory for the embedded scene), so that `cdyn run DIR/scene.toml`
-// reruns it from anywhere.
+// The scene as run, to be written next to the results: its name given (the stem of its
+// file otherwise, and scene.toml's would be "scene"), a relative mesh.file made absolute
+// (by the rule of make_mesh: relative to the scene file's directory, or to the current
+// directory for the embedded scene), so that `cdyn run DIR/scene.toml` reruns it from
+// anywhere, and `cdyn run --resume DIR` with the same name.
 Scene scene_as_run(Scene scene, const std::string& scene_file) {
+  if (!scene.has("name")) scene.set("name=" + toml_string(scene.name()));
   if (scene.string("mesh.kind", "") != "gmsh") return scene;  // else mesh.file is unused
   std::filesystem::path file = scene.string("mesh.file");
   if (file.is_relative() && !scene_file.empty()) file = std::filesystem::path(scene_file).parent_path() / file;
@@ -113,88 +89,67 @@ Scene scene_as_run(Scene scene, const std::string& scene_file) {
 }
 
 // An earlier run's files in the same directory go first: a directory holds one run.
-void remove_previous_outputs(const std::filesystem::path& out) {
+// A resumed run keeps the run's field files and checkpoint (and rewrites history.csv
+// and contact.csv from the checkpoint's journals).
+void remove_previous_outputs(const std::filesystem::path& out, bool resuming) {
   std::error_code ec;
   remove_stale_temporaries(out);  // of a run that was killed
   std::filesystem::remove(out / "summary.json", ec);
   std::filesystem::remove(out / "history.csv", ec);
   std::filesystem::remove(out / "contact.csv", ec);
-  remove_fields(out);
   for (const char* png : {"energy.png", "probes.png", "contact.png", "contact_pressure.png"}) std::filesystem::remove(out / "plots" / png, ec);
+  if (resuming) return;
+  remove_fields(out);
+  std::filesystem::remove_all(checkpoint_dir(out), ec);
 }
 
-// history.csv (one row per step) and, for elasticity against a plane, contact.csv
-// (every output.contact_every steps), the per-step contact force and momentum columns and the
-// impact summary.
-class History {
- public:
-  History(const Simulation& sim, const std::filesystem::path& out)
-      : sim_(sim), file_(out / "history.csv"), csv_(file_.stream()) {
-    csv_.precision(17);
-    csv_ << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s,step_s";
-    if (sim.components == 2) {
-      momentum_.emplace(sim.problem);
-      csv_ << ",contact_force,px,py";
-      if (sim.has_obstacle) {
-        contact_.emplace(sim, out / "contact.csv");
-        penetration_.emplace(sim.problem);
-        csv_ << ",penetration";
-      }
-    }
-    if (has_data_in_t(sim.problem)) csv_ << ",data_work";
-    for (const auto& pr : sim.probes)
-      for (const std::string& c : probe_columns(sim, pr)) csv_ << "," << c;
-    csv_ << "\n";
-  }
+// The whole of a text file; InputError naming it if it cannot be read.
+std::string read_text(const std::filesystem::path& file, const std::string& what) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": " + what);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
-  // reaction_xy: the step's reaction in (x, y) (post/contact_force.hpp).
-  // data_work: the work of the data in t on the body since t = 0 (a column only then).
-  void record(int step, const State& s, const StepStats& st, double step_seconds, const Energy& E,
-              const Eigen::VectorXd& rate, const Eigen::VectorXd& reaction_xy, double data_work) {
-    csv_ << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
-         << st.qp_iterations << "," << st.qp_seconds << "," << step_seconds;
-    const ConstrainedProblem& p = sim_.problem;
-    const Eigen::VectorXd U_full = p.full(s.U);
-    if (momentum_) {
-      const bool write = step % sim_.contact_every == 0 || step == sim_.n_steps;
-      const double force = contact_ ? contact_->record(step, s.t, U_full, reaction_xy, write) : 0.0;
-      const Point P = (*momentum_)(s.V);
-      csv_ << "," << force << "," << P.x << "," << P.y;
-      impact_.observe({step, s.t, E.total(), E.kinetic, P}, st.active, force);
-      if (penetration_) {
-        const double depth = (*penetration_)(U_full, s.t);
-        max_penetration_ = std::max(max_penetration_, depth);
-        csv_ << "," << depth;
-      }
-    }
-    if (has_data_in_t(p)) csv_ << "," << data_work;
-    for (const auto& pr : sim_.probes)
-      for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv_ << "," << v;
-    csv_ << "\n";
-  }
-
-  // The files get their names only here (atomic_file.hpp): at the end of the run, at
-  // an interruption or at a numerical failure, never half-written by a killed process.
-  void close() {
-    file_.commit();
-    if (contact_) contact_->close();
-  }
-
-  // summary.json's "impact" (elasticity against rigid obstacles), else null.
-  nlohmann::ordered_json impact() const { return contact_ ? impact_json(impact_.summary(sim_.dt)) : nlohmann::ordered_json(); }
-  // The largest penetration of the whole boundary into the obstacles so far.
-  double max_penetration() const { return max_penetration_; }
-
- private:
-  const Simulation& sim_;
-  AtomicFile file_;
-  std::ostream& csv_;
-  std::optional<LinearMomentum> momentum_;
-  std::optional<ContactHistory> contact_;
-  std::optional<BoundaryPenetration> penetration_;
-  double max_penetration_ = 0.0;
-  ImpactMonitor impact_;
+// How a run starts: its scene, its directory and, for --resume, its checkpoint.
+struct Start {
+  Scene scene;
+  std::string scene_text;  // scene.toml as written (or to be written)
+  std::filesystem::path out;
+  std::optional<RunCheckpoint> checkpoint;
 };
+
+Start fresh_start(const RunOptions& opt) {
+  Scene scene = Scene::load(opt.scene, opt.scene_text);
+  for (const auto& a : command_line_paths(opt.sets)) scene.set(a);
+  Start start{scene, scene_as_run(scene, opt.scene).dump(), opt.out, std::nullopt};
+  if (start.out.empty()) start.out = std::filesystem::path("out") / scene.name();
+  return start;
+}
+
+// `--resume DIR`: the scene is DIR/scene.toml as the run wrote it, and the checkpoint
+// must have been written for it (checkpoint.hpp).
+Start resumed_start(const RunOptions& opt) {
+  if (!opt.scene.empty() || !opt.scene_text.empty() || !opt.sets.empty() || !opt.out.empty())
+    throw InputError("--resume: the run's scene is DIR/scene.toml and its outputs go to DIR: give no SCENE, --set "
+                     "or --out with it");
+  const std::filesystem::path out = opt.resume;
+  const std::filesystem::path file = out / "scene.toml";
+  std::string text = read_text(file, "no such file (--resume takes the directory of a run)");
+  RunCheckpoint checkpoint = read_checkpoint(out, text);
+  Scene scene = Scene::from_string(text, file.string());
+  return {std::move(scene), std::move(text), out, std::move(checkpoint)};
+}
+
+// A checkpoint's state must be one of this problem (a scene.toml that matches its
+// fingerprint builds the same problem; this guards the file's own consistency).
+void check_sizes(const RunCheckpoint& c, const Simulation& sim, const std::filesystem::path& out) {
+  const ConstrainedProblem& p = sim.problem;
+  if (c.state.U.size() != p.n_free() || c.state.V.size() != p.mass->n_velocity() ||
+      c.state.reaction.size() != p.n_free() || c.rate.size() != p.W->n_dofs() || c.step < 0 || c.step > sim.n_steps)
+    throw InputError((checkpoint_dir(out) / "state.bin").string() + ": not a valid checkpoint of this run's problem");
+}
 
 }  // namespace
 
@@ -212,74 +167,99 @@ std::vector<std::string> command_line_paths(std::vector<std::string> sets) {
 }
 
 int cmd_run(const RunOptions& opt) {
-  Scene scene = Scene::load(opt.scene, opt.scene_text);
-  for (const auto& a : command_line_paths(opt.sets)) scene.set(a);
-  Simulation sim = make_simulation(scene);
-  const bool write_fields = sim.spec.output.fields;
-  const bool make_plots = sim.spec.output.plots;
+  Start start = opt.resume.empty() ? fresh_start(opt) : resumed_start(opt);
+  const std::optional<RunCheckpoint>& resume = start.checkpoint;
+  Simulation sim = make_simulation(start.scene);
+  if (resume) check_sizes(*resume, sim, start.out);
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
   std::vector<std::string> warnings = run_warnings(sim);
   if (opt.warnings)
     for (const std::string& w : warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
 
-  const std::filesystem::path out = opt.out.empty() ? std::filesystem::path("out") / sim.scene_name : std::filesystem::path(opt.out);
+  const std::filesystem::path& out = start.out;
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) throw InputError(out.string() + ": cannot create the output directory (" + ec.message() + ")");
-  remove_previous_outputs(out);
-  write_file_atomically(out / "scene.toml", scene_as_run(scene, opt.scene).dump());
-  History history(sim, out);
+  remove_previous_outputs(out, resume.has_value());
+  if (!resume) write_file_atomically(out / "scene.toml", start.scene_text);
+  const int checkpoint_every = sim.spec.output.checkpoint_every;
+  const std::filesystem::path journals = checkpoint_every > 0 ? checkpoint_dir(out) : std::filesystem::path();
+  if (!journals.empty()) std::filesystem::create_directories(journals);
+  History history(sim, out, journals, resume ? std::optional(resume->history) : std::nullopt);
 
-  const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
-  State s = sim.initial;
-  const Energy E_initial = sim.scheme->energy(s);
+  // The state and everything summed over the steps: from t = 0, or from the checkpoint.
+  State s = resume ? resume->state : sim.initial;
+  if (resume) sim.scheme->restore(resume->scheme);
+  const Energy E_initial = resume ? resume->E_initial : sim.scheme->energy(s);
   const double E0 = E_initial.total();
-  EnergyDrift drift(E_initial);
-  double max_violation = p.max_violation(s.U), qp_iters = 0.0, qp_seconds = 0.0, E_final = E0;
-  double energy_iters = 0.0, max_reconstruction_kkt = 0.0;
-  int max_active = 0;
-  double max_kkt = 0.0;  // the largest step-QP KKT residual (≤ solver.tol: the steps are solved)
-  Eigen::VectorXd rate = Eigen::VectorXd::Zero(p.W->n_dofs());
-  Eigen::VectorXd force_xy;  // the last step's reaction in (x, y), for every output
+  EnergyDrift drift = resume ? EnergyDrift(E0, resume->drift_abs, resume->drift_half_sum) : EnergyDrift(E_initial);
+  RunTotals totals = resume ? resume->totals : RunTotals{};
+  if (!resume) totals.max_violation = p.max_violation(s.U);
+  double E_final = sim.scheme->energy(s).total();
+  Eigen::VectorXd rate = resume ? resume->rate : Eigen::VectorXd::Zero(p.W->n_dofs());
+  Eigen::VectorXd force_xy = reaction_xy(p, s.reaction);  // the last step's reaction in (x, y), for every output
 
   // The work of the data in t (a load L(t), a moving obstacle) since t = 0: the scheme's
   // own balance when it keeps one exactly (discrete_gradient), else the midpoint
-  // quadrature of problems/data_work.hpp; J is balanced against it.
-  double data_work = 0.0;
+  // quadrature of problems/data_work.hpp; J is balanced against it (and against the
+  // damping's work W_d).
   auto add_data_work = [&](const StepStats& st, double t_before, const Eigen::VectorXd& U_before) {
     if (!has_data_in_t(p)) return;
-    data_work += st.external_work ? *st.external_work
-                                  : data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), s.reaction);
+    totals.data_work += st.external_work ? *st.external_work
+                                         : data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), s.reaction);
   };
   auto record = [&](int step, const StepStats& st, double step_seconds, const Energy& E) {
     E_final = E.total();
-    drift.observe(E, data_work);
+    drift.observe(E, totals.data_work, totals.dissipated);
     force_xy = reaction_xy(p, s.reaction);
-    history.record(step, s, st, step_seconds, E, rate, force_xy, data_work);
+    history.record(step, s, st, step_seconds, E, {totals.dissipated, totals.data_work}, rate, force_xy);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
   std::optional<FieldsWriter> fields;
-  if (write_fields) fields.emplace(out, *sim.mesh, p);
+  if (sim.spec.output.fields) fields.emplace(out, *sim.mesh, p);
+  if (fields && resume) fields->continue_series(resume->frames, resume->step);
   const DerivedFields derived(sim);  // σ, ε, von Mises, contact pressure, regions
-  double fields_seconds = 0.0;
-  auto write_fields_at = [&](int step) {
-    if (!fields || (step % sim.output_every != 0 && step != sim.n_steps)) return;
+  double fields_seconds = 0.0;       // in this process
+  auto write_fields = [&](int step) {
     const auto tf = Clock::now();
     const Eigen::VectorXd U_full = p.full(s.U);
     fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy));
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
-  record(0, StepStats{}, 0.0, E_initial);
-  write_fields_at(0);
+  // The totals with this process's time added (the checkpoint's, or summary.json's).
+  auto totals_now = [&] {
+    RunTotals t = totals;
+    t.fields_seconds += fields_seconds;
+    t.wall_seconds += seconds_since(t0) - fields_seconds;
+    return t;
+  };
+  // A checkpoint at step n: the journals first, then state.bin (checkpoint.hpp); then
+  // the scheme restores its own memory, as a run resumed from here will.
+  int last_checkpoint = resume ? resume->step : -1;
+  auto checkpoint = [&](int n) {
+    RunCheckpoint c{scene_fingerprint(start.scene_text), n, s, sim.scheme->memory(), E_initial, drift.abs(),
+                    drift.half_sum(), totals_now(), history.checkpoint(), rate, {}};
+    if (fields)
+      for (const FieldsWriter::Frame& f : fields->frames()) c.frames.emplace_back(f.step, f.t);
+    write_checkpoint(out, c);
+    sim.scheme->restore(c.scheme);
+    last_checkpoint = n;
+  };
+  if (!resume) {
+    record(0, StepStats{}, 0.0, E_initial);
+    if (fields) write_fields(0);
+  }
 
-  int steps_done = 0;
+  const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
+  const int first = resume ? resume->step + 1 : 1;
+  int steps_done = first - 1;
   // Ctrl-C stops the loop after the step in progress (interrupt.hpp); the guard stays
   // through the plots, whose interruption leaves the data files complete.
   InterruptGuard guard;
-  for (int n = 1; n <= sim.n_steps && !interrupted(); ++n) {
+  for (int n = first; n <= sim.n_steps && !interrupted(); ++n) {
     const Eigen::VectorXd U_old = s.U;
     const double t_old = s.t;
     StepStats st;
@@ -313,123 +293,48 @@ int cmd_run(const RunOptions& opt) {
     // nodes of an inclined plane); on the fixed dofs it stays 0 (U_D is constant in time)
     const Eigen::VectorXd du = p.global(s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
-    qp_iters += st.qp_iterations;
-    energy_iters += st.energy_iterations;
-    max_reconstruction_kkt = std::max(max_reconstruction_kkt, st.reconstruction_kkt);
-    qp_seconds += st.qp_seconds;
-    max_active = std::max(max_active, st.active);
-    max_kkt = std::max(max_kkt, st.kkt_residual);
-    max_violation = std::max(max_violation, p.max_violation(s.U, s.t));
+    totals.add(st, p.max_violation(s.U, s.t));
     add_data_work(st, t_old, U_old);
     record(n, st, step_seconds, E);
     steps_done = n;
-    write_fields_at(n);
+    if (fields && (n % sim.output_every == 0 || n == sim.n_steps)) write_fields(n);
+    if (checkpoint_every > 0 && n % checkpoint_every == 0 && n < sim.n_steps) checkpoint(n);
     if (show_progress && (n % 10 == 0 || n == sim.n_steps))
-      progress(n, sim.n_steps, s.t, drift.rel(), st.active, seconds_since(t0));
+      progress(n, sim.n_steps, s.t, drift.rel(), st.active, seconds_since(t0), n - first + 1);
   }
   const bool partial = steps_done < sim.n_steps;
-  if (partial && fields && steps_done % sim.output_every != 0) {  // the last state computed
-    const auto tf = Clock::now();
-    const Eigen::VectorXd U_full = p.full(s.U);
-    fields->write(steps_done, s.t, U_full, rate, force_xy, derived(U_full, force_xy));
-    fields_seconds += seconds_since(tf);
-  }
-  const double wall = seconds_since(t0) - fields_seconds;
+  // Interrupted: a checkpoint of the last step, so that --resume loses nothing (before
+  // the last state's field file, which is no frame of the series).  Complete: nothing
+  // left to resume.
+  if (partial && checkpoint_every > 0 && steps_done > last_checkpoint) checkpoint(steps_done);
+  if (partial && fields && steps_done % sim.output_every != 0) write_fields(steps_done);  // the last state computed
+  if (!partial) std::filesystem::remove_all(checkpoint_dir(out), ec);
+  totals = totals_now();
   if (show_progress) std::fprintf(stderr, "\n");
   history.close();
   if (fields) fields->finish();
 
-  nlohmann::ordered_json j;
-  j["scene"] = sim.scene_name;
-  j["model"] = sim.model;
-  j["pair"] = sim.pair;
-  j["scheme"] = sim.scheme_name;
-  j["full_steps"] = to_string(sim.scheme->full_steps());
-  j["solver"] = sim.solver_name;
-  j["solver_tol"] = sim.tol;
-  j["n_dofs"] = p.W->n_dofs();
-  j["n_free"] = p.n_free();
-  j["n_velocity"] = p.mass->n_velocity();
-  j["n_constraints"] = p.constrained.size();
-  j["n_steps"] = steps_done;
-  j["partial"] = partial;  // interrupted (Ctrl-C/SIGTERM) after n_steps of n_steps_asked
-  j["n_steps_asked"] = sim.n_steps;
-  j["dt"] = sim.dt;
-  j["T"] = s.t;
-  j["h"] = sim.mesh->h_max();
-  j["E0"] = E0;
-  j["E_final"] = E_final;
-  j["E_rel_drift"] = drift.rel();
-  j["E_abs_drift"] = drift.abs();
-  j["E_scale"] = drift.scale();
-  if (has_data_in_t(p)) j["data_work"] = data_work;  // the drift is then of J − J0 − data_work
-  j["max_violation"] = max_violation;
-  j["max_active"] = max_active;
-  j["wall_s"] = wall;
-  const int per = std::max(steps_done, 1);
-  j["s_per_step"] = wall / per;
-  j["qp_s_per_step"] = qp_seconds / per;
-  j["qp_iters_mean"] = qp_iters / per;
-  if (energy_iters > 0) j["energy_iters_mean"] = energy_iters / per;  // discrete_gradient: step QPs per step
-  if (sim.scheme->full_steps() == FullSteps::Reconstructed) j["reconstruction_kkt_max"] = max_reconstruction_kkt;
-  j["kkt_residual_max"] = max_kkt;
-  j["fields_s"] = fields_seconds;
-  if (u_exact) j["error_exact"] = l2_error_at(sim, *u_exact, s);  // ‖u_h(T) − u(T)‖_L2
   if (sim.has_obstacle) {
-    j["impact"] = history.impact();
-    j["max_penetration"] = history.max_penetration();  // the whole boundary against every obstacle
-    const std::string w = penetration_warning(sim, history.max_penetration(), max_violation);
+    const std::string w = penetration_warning(sim, history.max_penetration(), totals.max_violation);
     if (!w.empty()) {
       warnings.push_back(w);
       if (opt.warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
     }
   }
-  j["wellposed"] = wellposedness_summary(sim);
-  const SceneSpec::Units& units = sim.spec.units;
-  j["units"] = units.length.empty() ? nlohmann::ordered_json()
-                                    : nlohmann::ordered_json{{"length", units.length}, {"force", units.force}, {"time", units.time}};
-  j["warnings"] = warnings;
-  j["written"] = written_bytes(out);  // before summary.json and the plots, which are made from it
-  write_file_atomically(out / "summary.json", j.dump(2) + "\n");
+  const RunOutcome outcome{sim, out, s, steps_done, partial, resume ? resume->step : -1, E0, E_final, drift, totals,
+                           history, warnings, u_exact};
+  const nlohmann::ordered_json summary = run_summary(outcome);
+  write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
 
   std::string plot_note;
-  if (make_plots && !partial && !interrupted()) plot_note = run_python_script(kPlotRunScript, {out.string()});
+  if (sim.spec.output.plots && !partial && !interrupted()) plot_note = run_python_script(kPlotRunScript, {out.string()});
   const bool plots_interrupted = !partial && interrupted();
-
-  if (!opt.quiet) {
-    const std::string label = partial ? "INTERRUPTED after step " + std::to_string(steps_done) + " of " +
-                                             std::to_string(sim.n_steps) + " (partial results)"
-                                       : "";
-    char energy[260];
-    const bool worked = has_data_in_t(p);  // J balanced against the data's work W
-    const char* balance = worked ? "J - J0 - W" : "J - J0";
-    if (drift.scale_is_J0())
-      std::snprintf(energy, sizeof energy, "max |%s|/|J0| = %.3e", balance, drift.rel());
-    else  // J0 = 0 (a start from rest) or small against the energies exchanged
-      std::snprintf(energy, sizeof energy, "max |%s| = %.3e = %.3e E_scale (E_scale = max(E_kin + |E_pot|)/2 = %.4g)",
-                    balance, drift.abs(), drift.rel(), drift.scale());
-    if (worked)
-      std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy),
-                    " with W = %.6g the work of the data in t", data_work);
-    std::printf(
-        "cdyn run %s: %s, %s, %s, solver %s.%s%s\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
-        "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "
-        "violation %.2e.\n  Condition (12): %s.\n",
-        sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), sim.solver_name.c_str(),
-        partial ? "\n  " : "", label.c_str(), p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()),
-        steps_done, sim.dt, s.t, wall, wall / per, qp_iters / per, E0, E_final, energy, max_violation,
-        wellposedness_line(j["wellposed"]).c_str());
-    std::string written;
-    for (const auto& [name, bytes] : j["written"].items())
-      if (name != "total") written += (written.empty() ? "" : ", ") + name + " " + human_bytes(bytes.get<std::uintmax_t>());
-    if (const std::uintmax_t plots = bytes_of(out / "plots"); plots > 0) written += ", plots " + human_bytes(plots);
-    std::printf("  Results in %s (%s).\n", out.string().c_str(), written.c_str());
-    if (!warnings.empty()) std::printf("  %zu warning%s (above, and in summary.json).\n", warnings.size(), warnings.size() > 1 ? "s" : "");
-    if (!plot_note.empty() && !plots_interrupted) std::printf("  Note: no plots (%s).\n", plot_note.c_str());
-  }
+  if (!opt.quiet) print_run_paragraph(outcome, summary, plots_interrupted ? "" : plot_note);
   if (partial) {
-    std::fprintf(stderr, "cdyn: interrupted after step %d of %d; the results so far are in %s (summary.json: partial = true)\n",
-                 steps_done, sim.n_steps, out.string().c_str());
+    std::fprintf(stderr,
+                 "cdyn: interrupted after step %d of %d; the results so far are in %s (summary.json: partial = true%s)\n",
+                 steps_done, sim.n_steps, out.string().c_str(),
+                 checkpoint_every > 0 ? "; cdyn run --resume continues it" : "");
     return 130;  // the shell's status for a run ended by SIGINT
   }
   if (plots_interrupted) {

@@ -113,7 +113,7 @@ std::string run_label(const RunResult& r) {
 }
 
 void run_one(const StudyOptions& opt, const fs::path& dir, const ErrorMeasure& measure, RunResult& r) {
-  RunOptions run{opt.scene, dir.string(), r.sets, true, false, opt.scene_text};
+  RunOptions run{opt.scene, dir.string(), r.sets, true, false, opt.scene_text, ""};
   try {
     cmd_run(run);  // 130 when interrupted: summary.json says partial
   } catch (const NumericalError& e) {

@@ -18,7 +18,8 @@ struct Simulation;
 // physical groups; --set gives a .geo parameter (gmsh -setnumber, a scene's mesh.set).
 int cmd_mesh(const std::string& file, const std::vector<std::string>& sets = {});
 
-// `cdyn run [SCENE.toml] [--out DIR] [--set key=value]... [--quiet]`.
+// `cdyn run [SCENE.toml] [--out DIR] [--set key=value]... [--quiet]`, or
+// `cdyn run --resume DIR [--quiet]`: the run in DIR from its last checkpoint.
 struct RunOptions {
   std::string scene;               // empty: the embedded default scene
   std::string out;                 // empty: out/<scene name>
@@ -26,6 +27,7 @@ struct RunOptions {
   bool quiet = false;
   bool warnings = true;            // print the run's warnings on stderr (cdyn study prints its own)
   std::string scene_text;          // not empty: the scene itself as TOML text, `scene` its source's name
+  std::string resume;              // a run directory to resume (then no scene, sets or out)
 };
 int cmd_run(const RunOptions& options);
 

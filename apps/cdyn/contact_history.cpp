@@ -3,26 +3,27 @@
 
 namespace cdyn::app {
 
-ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file)
-    : mesh_(*sim.mesh),
-      contact_(sim.problem),
-      file_(file),
-      csv_(file_.stream()) {
-  csv_.precision(17);
-  csv_ << "step,t,vertex,x,y,s,gap,force,pressure\n";
+ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file,
+                               const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
+    : mesh_(*sim.mesh), contact_(sim.problem), csv_(file, journal, resume) {
+  if (csv_.resumed()) return;
+  csv_.rows() << "step,t,vertex,x,y,s,gap,force,pressure\n";
+  csv_.end_rows();
 }
 
 double ContactHistory::record(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
                               bool write) {
   double total = 0.0;
+  std::ostream& csv = csv_.rows();
   for (const ContactPressure::Vertex& c : contact_.vertices()) {
     const double force = contact_.normal_force(reaction_xy, c);
     total += force;
     if (!write) continue;
     const Point& a = mesh_.vertices[c.vertex];
-    csv_ << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << "," << c.s << ","
-         << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0) << "\n";
+    csv << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << "," << c.s << ","
+        << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0) << "\n";
   }
+  if (write) csv_.end_rows();
   return total;
 }
 

@@ -8,10 +8,11 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
-#include "cdyn/atomic_file.hpp"
 #include "cdyn/post/contact_pressure.hpp"
 #include "cdyn/post/impact_summary.hpp"
+#include "csv_output.hpp"
 #include "simulation.hpp"
 
 namespace cdyn::app {
@@ -19,7 +20,10 @@ namespace cdyn::app {
 // contact.csv: one row per constrained vertex of Γ_C at each recorded step.
 class ContactHistory {
  public:
-  ContactHistory(const Simulation& sim, const std::filesystem::path& file);
+  // journal: its journal (csv_output.hpp), empty without checkpoints; resume: the mark a
+  // checkpoint recorded, for a resumed run.
+  ContactHistory(const Simulation& sim, const std::filesystem::path& file, const std::filesystem::path& journal,
+                 const std::optional<JournalMark>& resume);
 
   // The total normal contact force Σ F_N(a) of the state (U_full all dofs of W^h,
   // reaction_xy the reaction in Cartesian free components, empty before step 1); writes
@@ -28,13 +32,13 @@ class ContactHistory {
 
   // Gives the file its name (it is written under a temporary one until then: a run
   // that dies leaves no contact.csv that looks complete, atomic_file.hpp).
-  void close() { file_.commit(); }
+  void close() { csv_.commit(); }
+  JournalMark checkpoint() { return csv_.checkpoint(); }
 
  private:
   const Mesh& mesh_;
   ContactPressure contact_;
-  AtomicFile file_;
-  std::ostream& csv_;
+  CsvOutput csv_;
 };
 
 // summary.json's "impact" entry.

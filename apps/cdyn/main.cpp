@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   run->add_option("--out", run_options.out, "output directory (default out/<scene name>)");
   run->add_option("--set", run_options.sets, "override a scene key, e.g. --set time.dt=0.002")->allow_extra_args(false);
   run->add_flag("--quiet", run_options.quiet, "no progress line and no final summary");
+  run->add_option("--resume", run_options.resume,
+                  "continue the run in DIR from its last checkpoint (output.checkpoint_every; its scene is "
+                  "DIR/scene.toml)");
 
   cdyn::app::WellposedOptions wp_options;
   auto* wellposed = app.add_subcommand("wellposed", "Condition (12) for every pair on a scene's mesh and constraints");

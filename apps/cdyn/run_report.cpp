@@ -27,6 +27,7 @@ nlohmann::ordered_json written_bytes(const fs::path& out) {
   for (const char* name : {"scene.toml", "history.csv", "contact.csv"})
     if (fs::exists(out / name)) add(name, bytes_of(out / name));
   if (fs::exists(out / "fields.pvd")) add("fields", bytes_of(out / "fields.pvd") + bytes_of(out / "fields"));
+  if (fs::exists(out / "checkpoint")) add("checkpoint", bytes_of(out / "checkpoint"));
   j["total"] = total;
   return j;
 }

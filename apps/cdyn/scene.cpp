@@ -34,11 +34,12 @@ const std::set<std::string> kKnownKeys = {
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
     "time.beta",      "time.gamma",     "time.restitution", "time.reconstruct", "time.energy_tol",
+    "damping.alpha",  "damping.beta",
     "solver.name",    "solver.tol",     "solver.max_iterations",
     "solver.condense", "solver.cg_iterations", "solver.free_block",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
-    "output.stress",
+    "output.stress",  "output.checkpoint_every",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 // The keys of each table of the array [[obstacles]] (elasticity: more rigid obstacles).
@@ -179,7 +180,7 @@ void Scene::set(const std::string& assignment) {
     order_[key] = names ? source_order(*names) : std::vector<std::string>{};
   }
   t->insert_or_assign(key.substr(start), *parsed.get("v"));
-  if (key == "name") name_ = value;
+  if (key == "name") name_ = string("name");  // (the value as TOML read it: --set name=\"x\" is x)
   // method.pair and method.mass are alternatives: overriding one replaces the other.
   if (key == "method.pair" || key == "method.mass") t->erase(key == "method.pair" ? "mass" : "pair");
   // Another mesh kind drops the keys the new kind does not take (else refused as

@@ -310,6 +310,13 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   t.parameters.reconstruct = s.boolean("time.reconstruct", t.parameters.reconstruct);
   t.parameters.energy_tol = s.number("time.energy_tol", t.parameters.energy_tol);
   if (!(t.parameters.energy_tol > 0.0)) throw InputError("time.energy_tol: must be positive");
+  // Rayleigh damping D = αM + βA (docs/schemes.md; the schemes without it refuse it,
+  // naming the key through scene_key)
+  RayleighDamping& d = t.parameters.damping;
+  d.alpha = s.number("damping.alpha", 0.0);
+  d.beta = s.number("damping.beta", 0.0);
+  for (const auto& [key, value] : {std::pair{"damping.alpha", d.alpha}, std::pair{"damping.beta", d.beta}})
+    if (!(value >= 0.0) || !std::isfinite(value)) throw InputError(std::string(key) + ": must be a finite number ≥ 0");
 
   SceneSpec::Solver& v = spec.solver;
   v.name = s.string("solver.name", "pdas");
@@ -351,6 +358,8 @@ void read_output(const Scene& s, SceneSpec& spec) {
   o.fields = s.boolean("output.fields", true);
   o.plots = s.boolean("output.plots", true);
   o.stress = s.boolean("output.stress", true);
+  o.checkpoint_every = s.integer("output.checkpoint_every", 0);
+  if (o.checkpoint_every < 0) throw InputError("output.checkpoint_every: must be 0 (no checkpoints) or more");
   for (const std::string& name : s.keys("output.probes"))
     o.probes.emplace_back(name, s.numbers("output.probes." + name));
   spec.exact_solution = s.string("exact.solution", "");
@@ -403,6 +412,7 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec, const
   if (parameter.rfind("setnumber.", 0) == 0) return "mesh.set." + parameter.substr(10);
   if (parameter == "kappa") return spec.physics.model == "bar" ? "physics.E" : "physics.tension";
   if (parameter == "pair" || parameter == "mass") return spec.method.key;
+  if (parameter == "damping") return spec.time.parameters.damping.alpha != 0.0 ? "damping.alpha" : "damping.beta";
   if (parameter == "gap")  // "... (obstacle NAME)" names the obstacle
     for (const SceneSpec::Rigid& r : spec.obstacle.rigid)
       if (message.find("(obstacle " + r.name + ")") != std::string::npos) return r.key + ".gap";

@@ -3,6 +3,7 @@
 // .pvd collection.  See fields_output.hpp for what is written.
 #include "cdyn/fields_output.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -36,6 +37,13 @@ std::string exact(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
+}
+
+// fields/step_NNNNNN.vtu, relative to the output directory.
+std::string frame_file(int step) {
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%06d.vtu", step);
+  return std::string("fields/") + name;
 }
 
 }  // namespace
@@ -174,9 +182,7 @@ void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, cons
       << "  </UnstructuredGrid>\n"
       << "  <AppendedData encoding=\"raw\">\n   _";
 
-  char name[32];
-  std::snprintf(name, sizeof name, "step_%06d.vtu", step);
-  const std::string file = std::string("fields/") + name;
+  const std::string file = frame_file(step);
   // Written under a temporary name and renamed when complete (atomic_file.hpp): an
   // interrupted run leaves no truncated step_*.vtu.
   AtomicFile vtu(out_ / file);
@@ -186,7 +192,28 @@ void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, cons
   os.write(geometry_blocks_.data(), static_cast<std::streamsize>(geometry_blocks_.size()));
   os << "\n  </AppendedData>\n</VTKFile>\n";
   vtu.commit();
-  frames_.push_back({t, file});
+  frames_.push_back({step, t, file});
+}
+
+void FieldsWriter::continue_series(const std::vector<std::pair<int, double>>& frames, int last_step) {
+  frames_.clear();
+  for (const auto& [step, t] : frames) {
+    const std::string file = frame_file(step);
+    if (!std::filesystem::is_regular_file(out_ / file))
+      throw InputError((out_ / file).string() + ": missing (a field file of the run being resumed)");
+    frames_.push_back({step, t, file});
+  }
+  // the others: later steps, and the last state of an interrupted run (not a frame of the series)
+  std::error_code ec;
+  std::vector<std::filesystem::path> others;
+  for (const auto& entry : std::filesystem::directory_iterator(out_ / "fields", ec)) {
+    const std::string name = entry.path().filename().string();
+    int step = -1;
+    if (std::sscanf(name.c_str(), "step_%d.vtu", &step) != 1) continue;
+    const bool listed = std::any_of(frames.begin(), frames.end(), [&](const auto& f) { return f.first == step; });
+    if (!listed || step > last_step) others.push_back(entry.path());
+  }
+  for (const auto& path : others) std::filesystem::remove(path, ec);
 }
 
 void FieldsWriter::finish() const {

@@ -66,11 +66,20 @@ class FieldsWriter {
   // Writes fields.pvd, the time series of the files written so far.
   void finish() const;
 
- private:
   struct Frame {
+    int step;
     double t;
     std::string file;  // relative to the output directory
   };
+  const std::vector<Frame>& frames() const { return frames_; }
+
+  // Takes over the series of a run resumed at step `last_step` (docs/outputs.md,
+  // "Restart"): the frames (step, t) it had written up to there, whose files must exist
+  // (InputError naming a missing one), and removes every other step file: those the
+  // stopped run wrote after its checkpoint, and the last state of an interrupted run.
+  void continue_series(const std::vector<std::pair<int, double>>& frames, int last_step);
+
+ private:
   std::filesystem::path out_;
   const Mesh& mesh_;
   const ConstrainedProblem& problem_;

@@ -72,7 +72,9 @@
 #include "cdyn/qp/rotated_qp.hpp"
 #include "cdyn/qp/step_solver.hpp"
 // schemes/
+#include "cdyn/schemes/damping.hpp"
 #include "cdyn/schemes/full_step.hpp"
+#include "cdyn/schemes/scheme_memory.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 // post/

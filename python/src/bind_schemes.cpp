@@ -51,7 +51,8 @@ void bind_schemes(py::module_& m) {
       .def_readonly("kkt_residual", &StepStats::kkt_residual)
       .def_readonly("converged", &StepStats::converged)
       .def_readonly("reconstruction_kkt", &StepStats::reconstruction_kkt)
-      .def_readonly("energy_iterations", &StepStats::energy_iterations);
+      .def_readonly("energy_iterations", &StepStats::energy_iterations)
+      .def_readonly("dissipated", &StepStats::dissipated, "the Rayleigh damping's work over the step, W_d ≥ 0");
 
   py::class_<SchemeParameters>(m, "SchemeParameters",
                                "The parameters of the schemes that have some, e.g. SchemeParameters(restitution=0.5)")
@@ -62,7 +63,14 @@ void bind_schemes(py::module_& m) {
       .def_readwrite("condense", &SchemeParameters::condense)
       .def_readwrite("reconstruct", &SchemeParameters::reconstruct)
       .def_readwrite("tol", &SchemeParameters::tol)
-      .def_readwrite("energy_tol", &SchemeParameters::energy_tol);
+      .def_readwrite("energy_tol", &SchemeParameters::energy_tol)
+      // Rayleigh damping D = αM + βA (docs/schemes.md): damping_alpha, damping_beta
+      .def_property(
+          "damping_alpha", [](const SchemeParameters& p) { return p.damping.alpha; },
+          [](SchemeParameters& p, double a) { p.damping.alpha = a; })
+      .def_property(
+          "damping_beta", [](const SchemeParameters& p) { return p.damping.beta; },
+          [](SchemeParameters& p, double b) { p.damping.beta = b; });
 
   py::class_<TimeScheme>(m, "TimeScheme", "One step of a scheme: a step QP and an explicit update (docs/schemes.md)")
       .def_property_readonly("name", &TimeScheme::name)

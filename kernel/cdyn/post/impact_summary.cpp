@@ -9,50 +9,50 @@ namespace cdyn {
 
 void ImpactMonitor::observe(const Snapshot& now, int active, double contact_force) {
   if (active > 0) {
-    if (first_ < 0) {
-      first_ = now.step;
-      t_first_ = now.t;
-      before_ = previous_;
+    if (m_.first < 0) {
+      m_.first = now.step;
+      m_.t_first = now.t;
+      m_.before = m_.previous;
     }
-    last_ = now.step;
-    t_last_ = now.t;
-    ++contact_steps_;
-    after_ = Snapshot{};  // not released yet
+    m_.last = now.step;
+    m_.t_last = now.t;
+    ++m_.contact_steps;
+    m_.after = Snapshot{};  // not released yet
     // The force's moments about t_first (t − t_first is small: no cancellation in σ²).
-    const double tau = now.t - t_first_;
-    force_sum_ += contact_force;
-    force_tau_ += contact_force * tau;
-    force_tau2_ += contact_force * tau * tau;
-  } else if (first_ >= 0 && after_.step < 0) {
-    after_ = now;
+    const double tau = now.t - m_.t_first;
+    m_.force_sum += contact_force;
+    m_.force_tau += contact_force * tau;
+    m_.force_tau2 += contact_force * tau * tau;
+  } else if (m_.first >= 0 && m_.after.step < 0) {
+    m_.after = now;
   }
-  if (contact_force > peak_) {
-    peak_ = contact_force;
-    t_peak_ = now.t;
+  if (contact_force > m_.peak) {
+    m_.peak = contact_force;
+    m_.t_peak = now.t;
   }
-  previous_ = now;
+  m_.previous = now;
 }
 
 ImpactMonitor::Summary ImpactMonitor::summary(double dt) const {
   Summary s;
-  if (first_ < 0) return s;
+  if (m_.first < 0) return s;
   s.contact = true;
-  s.t_first = t_first_;
-  s.t_last = t_last_;
-  s.duration = t_last_ - t_first_ + dt;
-  s.contact_steps = contact_steps_;
-  s.peak_force = peak_;
-  s.t_peak_force = t_peak_;
-  s.impulse = force_sum_ * dt;
-  const double tau_bar = force_sum_ > 0.0 ? force_tau_ / force_sum_ : 0.0;
-  s.force_width = force_sum_ > 0.0 ? std::sqrt(std::max(0.0, force_tau2_ / force_sum_ - tau_bar * tau_bar)) : 0.0;
-  s.t_force_centroid = t_first_ + tau_bar - 0.5 * dt;
+  s.t_first = m_.t_first;
+  s.t_last = m_.t_last;
+  s.duration = m_.t_last - m_.t_first + dt;
+  s.contact_steps = m_.contact_steps;
+  s.peak_force = m_.peak;
+  s.t_peak_force = m_.t_peak;
+  s.impulse = m_.force_sum * dt;
+  const double tau_bar = m_.force_sum > 0.0 ? m_.force_tau / m_.force_sum : 0.0;
+  s.force_width = m_.force_sum > 0.0 ? std::sqrt(std::max(0.0, m_.force_tau2 / m_.force_sum - tau_bar * tau_bar)) : 0.0;
+  s.t_force_centroid = m_.t_first + tau_bar - 0.5 * dt;
   const double half_sine_ratio = std::sqrt(1.0 / 12.0 - 1.0 / (2.0 * std::numbers::pi * std::numbers::pi));
   s.half_sine_duration = s.force_width / half_sine_ratio;
   s.half_sine_peak_force =
       s.half_sine_duration > 0.0 ? std::numbers::pi * s.impulse / (2.0 * s.half_sine_duration) : 0.0;
-  if (before_.step >= 0) s.before = before_;
-  if (after_.step >= 0) s.after = after_;
+  if (m_.before.step >= 0) s.before = m_.before;
+  if (m_.after.step >= 0) s.after = m_.after;
   return s;
 }
 

@@ -36,15 +36,23 @@ class ImpactMonitor {
     std::optional<Snapshot> before, after;  // after: empty while still in contact
   };
 
+  // What it has observed so far (a restart carries it over).
+  struct Memory {
+    Snapshot previous, before, after;
+    int first = -1, last = -1, contact_steps = 0;
+    double t_first = 0, t_last = 0, peak = 0, t_peak = 0;
+    double force_sum = 0, force_tau = 0, force_tau2 = 0;  // Σ F, Σ F τ, Σ F τ², τ = t − t_first
+  };
+
+  ImpactMonitor() = default;
+  explicit ImpactMonitor(const Memory& m) : m_(m) {}
   // One step: its state, how many constraints are active, the total contact force.
   void observe(const Snapshot& now, int active, double contact_force);
   Summary summary(double dt) const;
+  const Memory& memory() const { return m_; }
 
  private:
-  Snapshot previous_, before_, after_;
-  int first_ = -1, last_ = -1, contact_steps_ = 0;
-  double t_first_ = 0, t_last_ = 0, peak_ = 0, t_peak_ = 0;
-  double force_sum_ = 0, force_tau_ = 0, force_tau2_ = 0;  // Σ F, Σ F τ, Σ F τ², τ = t − t_first
+  Memory m_;
 };
 
 }  // namespace cdyn

@@ -188,6 +188,8 @@ IpoptSolver::IpoptSolver(const QPOptions& options) : options_(options) {
 
 IpoptSolver::~IpoptSolver() = default;
 
+void IpoptSolver::clear() { crossover_->clear(); }
+
 QPResult IpoptSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   const auto start = std::chrono::steady_clock::now();
   const bool new_matrices = checked_.check(qp, /*positive_definite=*/true, "ipopt");

@@ -47,6 +47,7 @@ class IpoptSolver : public StepSolver {
   ~IpoptSolver() override;
   std::string name() const override { return "ipopt"; }
   QPResult solve(const BoundQP& qp, const QPResult* warm_start = nullptr) override;
+  void clear() override;  // the crossover's PDAS caches
 
   // What Ipopt itself achieved in the last solve, before the crossover.
   struct Statistics {

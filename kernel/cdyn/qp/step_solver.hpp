@@ -25,6 +25,12 @@ class StepSolver {
   // solver does not take) and NumericalError when S is not positive definite or the
   // solver does not reach tol.  `warm_start`: a previous result (its X and active set).
   virtual QPResult solve(const BoundQP& qp, const QPResult* warm_start = nullptr) = 0;
+  // Forgets what it has cached (analyses, factorizations and their updates, the CG
+  // statistics that steer pdas): the next solve computes what a solver just made would,
+  // bit for bit, from the same QP and warm start.  A run resumed from a checkpoint
+  // starts with a new solver; the run that wrote the checkpoint clears its own there,
+  // so that both go on alike (schemes/scheme_memory.hpp).
+  virtual void clear() {}
 };
 
 // name: one of step_solver_names(); anything else is an InputError.

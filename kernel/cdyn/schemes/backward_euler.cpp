@@ -5,6 +5,9 @@
 // Eliminating V^{n+1} with M = Bᵀ C⁻¹ B and c = 1/dt gives the QP for X = U^{n+1}
 //   S = M c² + A,   r = M Uⁿ c² + Bᵀ Vⁿ c + L^{n+1}     (seed eqs. 10–11; docs/schemes.md),
 // then V^{n+1} = C⁻¹ B (U^{n+1} − Uⁿ) c.  J never increases (numerical dissipation).
+// Rayleigh damping adds α Bᵀ V^{n+1} + β A (U^{n+1} − Uⁿ) c to the first equation, i.e.
+// (αM + βA)(U^{n+1} − Uⁿ) c:  S += αc M + βc A,  r += (αc M + βc A) Uⁿ,  and J + W_d
+// never increases (docs/schemes.md, "Rayleigh damping").
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
@@ -13,16 +16,19 @@ namespace {
 
 class BackwardEuler final : public StepQPScheme {
  public:
-  BackwardEuler(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense)
-      : StepQPScheme(p, solver, dt, 1.0, 1.0, condense) {}
+  BackwardEuler(const ConstrainedProblem& p, StepSolver& solver, double dt, const SchemeParameters& parameters)
+      : StepQPScheme(p, solver, dt, 1.0, 1.0, parameters.condense, parameters.damping) {}
   std::string name() const override { return "backward_euler"; }
 
   StepStats step(State& s) override {
     const double c = 1.0 / dt_;
     StepStats stats;
     constrain_at(s.t + dt_);  // U^{n+1} ∈ K̄^h(t^{n+1})
-    const Eigen::VectorXd r = inertia(c * c, s.U, c, s.V) + p_.load(s.t + dt_);  // c² M Uⁿ + c Bᵀ Vⁿ + L
+    // (c² + αc) M Uⁿ + c Bᵀ Vⁿ + βc A Uⁿ + L
+    Eigen::VectorXd r = inertia(c * c + damping_.alpha * c, s.U, c, s.V) + p_.load(s.t + dt_);
+    if (damping_.beta > 0.0) r += damping_.beta * c * (p_.A * s.U);
     const Eigen::VectorXd U1 = solve(r, s, stats);
+    stats.dissipated = damping_work(U1 - s.U, dt_);
     s.V = p_.mass->velocity(c * (U1 - s.U));
     s.U = U1;
     s.t += dt_;
@@ -33,8 +39,8 @@ class BackwardEuler final : public StepQPScheme {
 }  // namespace
 
 std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt,
-                                                bool condense) {
-  return std::make_unique<BackwardEuler>(p, solver, dt, condense);
+                                                const SchemeParameters& parameters) {
+  return std::make_unique<BackwardEuler>(p, solver, dt, parameters);
 }
 
 }  // namespace cdyn

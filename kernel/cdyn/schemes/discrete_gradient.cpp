@@ -50,6 +50,12 @@
 // (StepStats::external_work): a second-order quadrature of ∫ ∂ₜΨ dt, exact when L and g
 // are affine in t and the active set does not change (then β = 0 and the step is plain
 // midpoint, as without data in t).
+//
+// Rayleigh damping (schemes/damping.hpp) is the midpoint's force (α_M M + β_K A) δU/dt,
+// δU = U^{n+1} − Uⁿ = 2D, on the right of the momentum equation (α_M, β_K: not
+// Gonzalez's β): S and r gain 2c(α_M M + β_K A) and the same times Uⁿ, and the step
+// is asked H^{n+1} − Hⁿ + W_d = Δ_tΨ with W_d = 4c (α_M DᵀMD + β_K DᵀAD), the damping's
+// work, so that J + W_d is conserved exactly (docs/schemes.md, "Rayleigh damping").
 #include <cmath>
 #include <optional>
 
@@ -67,7 +73,7 @@ class DiscreteGradient final : public StepQPScheme {
  public:
   DiscreteGradient(const ConstrainedProblem& p, StepSolver& solver, double dt, const SchemeParameters& parameters,
                    FullStepReconstruction full_step)
-      : StepQPScheme(p, solver, dt, 1.0, 4.0, parameters.condense),
+      : StepQPScheme(p, solver, dt, 1.0, 4.0, parameters.condense, parameters.damping, 2.0),
         full_step_(std::move(full_step)),
         energy_tol_(parameters.energy_tol),
         tol_(parameters.tol),
@@ -81,11 +87,26 @@ class DiscreteGradient final : public StepQPScheme {
     initialized_ = true;
   }
 
+  // Ψ(qⁿ) is remembered, not recomputed: the same number bit for bit.
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    full_step_.store(m);
+    m.numbers["psi"] = psi_;
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    full_step_.restore(m);
+    psi_ = m.number("psi");
+    initialized_ = true;
+  }
+
   StepStats step(State& s) override {
     if (!initialized_) initialize(s);
     StepStats stats;
     advance(s, dt_, 0, stats);
-    if (mass_factor() != 4.0) set_mass_factor(4.0);  // back to the step's matrix after substeps
+    set_step_length(dt_);  // back to the step's matrix after substeps
     return stats;
   }
 
@@ -103,11 +124,18 @@ class DiscreteGradient final : public StepQPScheme {
 
   // One discrete gradient step of length h; false (s unchanged) when the correction does
   // not converge.
+  // S = (4/h² + 2α_M/h) M + (1 + 2β_K/h) A: the step matrix of a step of length h.
+  void set_step_length(double h) {
+    set_factors(1.0 + 2.0 * damping_.beta / h, 4.0 * (dt_ / h) * (dt_ / h) + 2.0 * damping_.alpha * (dt_ / h) * dt_);
+  }
+
   bool try_step(State& s, double h, StepStats& stats) {
     const double c = 1.0 / h;
-    set_mass_factor(4.0 * (dt_ / h) * (dt_ / h));  // S = 4M/h² + A
-    constrain_at(s.t + 0.5 * h);                     // U^{n+½} ∈ K̄^h(t^{n+½})
-    const Eigen::VectorXd r0 = inertia(4 * c * c, s.U, 2 * c, s.V) + p_.load(s.t + 0.5 * h);
+    set_step_length(h);
+    constrain_at(s.t + 0.5 * h);  // U^{n+½} ∈ K̄^h(t^{n+½})
+    // (4c² + 2α_M c) M Uⁿ + 2c Bᵀ Vⁿ + 2β_K c A Uⁿ + L
+    Eigen::VectorXd r0 = inertia(4 * c * c + 2 * damping_.alpha * c, s.U, 2 * c, s.V) + p_.load(s.t + 0.5 * h);
+    if (damping_.beta > 0.0) r0 += 2 * damping_.beta * c * (p_.A * s.U);
     const Eigen::VectorXd BtV = p_.mass->momentum(s.V);
     const double kinetic = p_.mass->kinetic_energy(s.V);
     const double t0 = s.t, t1 = s.t + h;
@@ -117,7 +145,7 @@ class DiscreteGradient final : public StepQPScheme {
 
     // One iteration: the QP with the correction −2β M (X_prev − Uⁿ) on the right.
     struct Iterate {
-      double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0;
+      double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0, dissipated = 0;
       Eigen::VectorXd X, U1, W1, reaction;
     };
     auto iterate = [&](double beta, const Eigen::VectorXd* X_prev) {
@@ -142,9 +170,11 @@ class DiscreteGradient final : public StepQPScheme {
       const double DMD = D.dot(mass_times(D));
       it.dq2 = 4 * DMD;  // |Δq|²_C = ΔUᵀ M ΔU
       const double pull = 4 * c * BtV.dot(D);
-      it.dH = 8 * c * c * DMD - pull + it.psi1 - psi_ - it.work;  // H^{n+1} − Hⁿ − Δ_tΨ
+      it.dissipated = damping_work(2.0 * D, h);  // W_d = 4c (α_M DᵀMD + β_K DᵀAD)
+      it.dH = 8 * c * c * DMD - pull + it.dissipated + it.psi1 - psi_ - it.work;  // H^{n+1} + W_d − Hⁿ − Δ_tΨ
       // the size of what ΔH cancels: its round-off is a few ε of this
-      it.terms = kinetic + 8 * c * c * DMD + std::abs(pull) + std::abs(it.psi1) + std::abs(psi_) + std::abs(it.work);
+      it.terms = kinetic + 8 * c * c * DMD + std::abs(pull) + it.dissipated + std::abs(it.psi1) + std::abs(psi_) +
+                 std::abs(it.work);
       return it;
     };
     auto small_energy = [&](const Iterate& it) { return std::abs(it.dH) <= energy_tol_ * it.terms; };
@@ -173,6 +203,7 @@ class DiscreteGradient final : public StepQPScheme {
     s.t += h;
     psi_ = a.psi1;
     stats.external_work = stats.external_work.value_or(0.0) + a.work;
+    stats.dissipated += a.dissipated;
     return true;
   }
 

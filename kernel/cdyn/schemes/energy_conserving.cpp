@@ -23,7 +23,9 @@ namespace {
 class EnergyConserving final : public StepQPScheme {
  public:
   EnergyConserving(const ConstrainedProblem& p, StepSolver& solver, double dt, bool condense)
-      : StepQPScheme(p, solver, dt, 0.25, 1.0, condense) {}
+      : StepQPScheme(p, solver, dt, 0.25, 1.0, condense) {
+    remember("U_prev", &U_prev_);
+  }
   std::string name() const override { return "energy_conserving"; }
 
   StepStats step(State& s) override {

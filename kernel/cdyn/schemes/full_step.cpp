@@ -76,4 +76,11 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
   return U + Z * last_.X;
 }
 
+void FullStepReconstruction::store(SchemeMemory& m) const { store_warm_start(m, "full_step", last_, has_last_); }
+
+void FullStepReconstruction::restore(const SchemeMemory& m) {
+  if (solver_) solver_->clear();
+  has_last_ = load_warm_start(m, "full_step", last_);
+}
+
 }  // namespace cdyn

@@ -27,6 +27,7 @@
 #include "cdyn/mass/massless_modes.hpp"
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/qp/step_solver.hpp"
+#include "cdyn/schemes/scheme_memory.hpp"
 
 namespace cdyn {
 
@@ -44,6 +45,11 @@ class FullStepReconstruction {
   // The solution W of (14) for the massful part of U at time t; the QP's KKT residual
   // goes to *kkt when given.  Returns U itself when Ker B = {0}.  Requires available().
   Eigen::VectorXd operator()(const Eigen::VectorXd& U, double t, double* kkt = nullptr);
+
+  // Its warm start into a scheme's memory, and back (clearing its solver's caches:
+  // schemes/scheme_memory.hpp).
+  void store(SchemeMemory& m) const;
+  void restore(const SchemeMemory& m);
 
  private:
   bool available_ = false;

@@ -11,6 +11,11 @@
 // Both end with C (Vⁿ + V^{n+1})/2 = B (U^{n+1} − Uⁿ) c.  Without active constraints
 // the rule conserves J exactly: J^{n+1} − Jⁿ = (U^{n+1} − Uⁿ)ᵀ Gᵀλ (docs/schemes.md).
 //
+// Rayleigh damping adds α Bᵀ V^{n+½} + β A (U^{n+1} − Uⁿ) c = (αM + βA)(U^{n+1} − Uⁿ) c
+// to the first equation: with U^{n+1} − Uⁿ = 2 (X − Uⁿ) (midpoint) or X − Uⁿ
+// (midpoint_end), S gains (2c or c)(αM + βA) and r the same times Uⁿ, and
+// J^{n+1} + W_d − Jⁿ = (U^{n+1} − Uⁿ)ᵀ Gᵀλ with W_d = (U^{n+1} − Uⁿ)ᵀ(αM + βA)(U^{n+1} − Uⁿ) c.
+//
 // The massless part of U^{n+1} (Ker B) is not what the extrapolation 2U^{n+½} − Uⁿ (or
 // midpoint_end's QP, which balances it at the midpoint) leaves: it solves the static
 // problem (14) at t^{n+1}, computed after the step by FullStepReconstruction whenever
@@ -29,7 +34,8 @@ class Midpoint final : public StepQPScheme {
  public:
   Midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool constraint_at_end,
            const SchemeParameters& parameters)
-      : StepQPScheme(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, parameters.condense),
+      : StepQPScheme(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, parameters.condense,
+                     parameters.damping, constraint_at_end ? 1.0 : 2.0),
         at_end_(constraint_at_end) {
     full_step_.emplace(p, parameters.tol);
     if (!full_step_->available() || (full_step_->needed() && !parameters.reconstruct)) full_step_.reset();
@@ -46,18 +52,34 @@ class Midpoint final : public StepQPScheme {
     if (full_step_) s.U = (*full_step_)(s.U, s.t);
   }
 
+  SchemeMemory memory() const override {
+    SchemeMemory m = StepQPScheme::memory();
+    if (full_step_) full_step_->store(m);
+    return m;
+  }
+
+  void restore(const SchemeMemory& m) override {
+    StepQPScheme::restore(m);
+    if (full_step_) full_step_->restore(m);
+    initialized_ = true;  // the state that goes with m has its massless part already
+  }
+
   StepStats step(State& s) override {
     if (!initialized_) initialize(s);
     const double c = 1.0 / dt_;
     constrain_at(at_end_ ? s.t + dt_ : s.t + 0.5 * dt_);  // the constrained unknown's time level
     const Eigen::VectorXd& L = p_.load(s.t + 0.5 * dt_);
     StepStats stats;
+    const double alpha = damping_.alpha, beta = damping_.beta;
     Eigen::VectorXd U1;
-    if (at_end_) {  // 2c² M Uⁿ + 2c Bᵀ Vⁿ − ½ A Uⁿ + L
-      U1 = solve(inertia(2 * c * c, s.U, 2 * c, s.V) - 0.5 * (p_.A * s.U) + L, s, stats);
-    } else {        // 4c² M Uⁿ + 2c Bᵀ Vⁿ + L
-      U1 = 2.0 * solve(inertia(4 * c * c, s.U, 2 * c, s.V) + L, s, stats) - s.U;
+    if (at_end_) {  // (2c² + αc) M Uⁿ + 2c Bᵀ Vⁿ + (βc − ½) A Uⁿ + L
+      U1 = solve(inertia(2 * c * c + alpha * c, s.U, 2 * c, s.V) + (beta * c - 0.5) * (p_.A * s.U) + L, s, stats);
+    } else {        // (4c² + 2αc) M Uⁿ + 2c Bᵀ Vⁿ + 2βc A Uⁿ + L
+      Eigen::VectorXd r = inertia(4 * c * c + 2 * alpha * c, s.U, 2 * c, s.V) + L;
+      if (beta > 0.0) r += 2 * beta * c * (p_.A * s.U);
+      U1 = 2.0 * solve(r, s, stats) - s.U;
     }
+    stats.dissipated = damping_work(U1 - s.U, dt_);
     s.V = 2.0 * p_.mass->velocity(c * (U1 - s.U)) - s.V;
     s.t += dt_;
     s.U = full_step_ ? (*full_step_)(U1, s.t, &stats.reconstruction_kkt) : U1;

@@ -23,7 +23,9 @@ namespace {
 class Newmark final : public StepQPScheme {
  public:
   Newmark(const ConstrainedProblem& p, StepSolver& solver, double dt, double beta, double gamma, bool condense)
-      : StepQPScheme(p, solver, dt, 1.0, 1.0 / beta, condense), beta_(beta), gamma_(gamma) {}
+      : StepQPScheme(p, solver, dt, 1.0, 1.0 / beta, condense), beta_(beta), gamma_(gamma) {
+    remember("Vdot", &Vdot_);
+  }
   std::string name() const override { return "newmark"; }
 
   StepStats step(State& s) override {

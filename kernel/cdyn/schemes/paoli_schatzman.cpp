@@ -22,6 +22,7 @@ class PaoliSchatzman final : public StepQPScheme {
  public:
   PaoliSchatzman(const ConstrainedProblem& p, StepSolver& solver, double dt, double e)
       : StepQPScheme(p, solver, dt, 0.0, 1.0), e_(e) {
+    remember("U_prev", &U_prev_);
     const SparseMatrix& M = *explicit_mass();
     if (M.nonZeros() == M.rows()) diagonal_ = M.diagonal();
   }

@@ -9,8 +9,8 @@
 namespace cdyn {
 
 StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m,
-                           bool condense)
-    : p_(p), solver_(solver), dt_(dt), a_(a), condense_(condense), M_(p.mass->matrix()) {
+                           bool condense, const RayleighDamping& damping, double s)
+    : p_(p), solver_(solver), dt_(dt), damping_(damping), condense_(condense), M_(p.mass->matrix()) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("dt", "must be positive and finite (got " + to_text(dt) + ")");
   if (!M_) {
     const SaddleForm f = p.mass->saddle(SparseMatrix(), 1.0);
@@ -19,10 +19,11 @@ StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, doub
     // matrix twice the size per active set).
     if (same_matrix(f.B, f.C)) M_ = f.C;
   }
-  build(m);
+  build(a + s * damping.beta / dt, m + s * damping.alpha * dt);  // + (s/dt)(αM + βA)
 }
 
-void StepQPScheme::build(double m) {
+void StepQPScheme::build(double a, double m) {
+  a_ = a;
   m_ = m;
   const double k = m / (dt_ * dt_);
   qp_.lower = p_.lower;
@@ -46,9 +47,16 @@ void StepQPScheme::build(double m) {
   condensation_.emplace(std::move(c));
 }
 
-void StepQPScheme::set_mass_factor(double m) {
-  if (m == m_) return;
-  build(m);
+void StepQPScheme::set_factors(double a, double m) {
+  if (a == a_ && m == m_) return;
+  build(a, m);
+}
+
+double StepQPScheme::damping_work(const Eigen::VectorXd& dU, double h) const {
+  double w = 0.0;
+  if (damping_.alpha > 0.0) w += damping_.alpha * dU.dot(mass_times(dU));
+  if (damping_.beta > 0.0) w += damping_.beta * dU.dot(p_.A * dU);
+  return w / h;
 }
 
 Energy StepQPScheme::energy(const State& s) const {
@@ -75,12 +83,35 @@ void StepQPScheme::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorX
     }
     // a condensed unknown is bounded now: back to the full QP (the warm start's indices
     // were those of the condensed one)
-    qp_.S = condensation_->S();
-    condensation_.reset();
-    has_last_ = false;
+    end_condensation();
   }
   qp_.lower = lower;
   qp_.upper = upper;
+}
+
+void StepQPScheme::end_condensation() {
+  qp_.S = condensation_->S();
+  qp_.lower = p_.lower;
+  qp_.upper = p_.upper;
+  condensation_.reset();
+  has_last_ = false;
+}
+
+SchemeMemory StepQPScheme::memory() const {
+  SchemeMemory m;
+  m.numbers["condensed"] = condensation_ ? 1.0 : 0.0;
+  store_warm_start(m, "step_qp", last_, has_last_);
+  for (const auto& [name, v] : remembered_) m.store_if_any(name, *v);
+  return m;
+}
+
+void StepQPScheme::restore(const SchemeMemory& m) {
+  solver_.clear();
+  // a condensation ended by a bound stays ended (set_bounds); the factors a_, m_ are
+  // those of a whole step between steps, as build() made them
+  if (m.number("condensed") == 0.0 && condensation_) end_condensation();
+  has_last_ = load_warm_start(m, "step_qp", last_);
+  for (const auto& [name, v] : remembered_) *v = m.vector_or_empty(name);
 }
 
 void StepQPScheme::constrain_at(double t) {

@@ -3,7 +3,9 @@
 // Backward Euler and the two midpoint variants all solve, per step, a QP with
 //     S = a A + k M,   k = m / dt²,
 // (a, m) = (1, 1), (1, 4) and (½, 2) respectively, and differ only in r and in the
-// update.  This base class builds S once (explicitly when M is sparse — H^h = P0, the
+// update.  Rayleigh damping (schemes/damping.hpp) adds (αM + βA) δU/dt to a step whose
+// increment is δU = U^{n+1} − Uⁿ = s (X − Uⁿ) (s = 1 with X = U^{n+1}, 2 with
+// X = U^{n+½}): a += sβ/dt, m += sα dt, and r gains (s/dt)(αM + βA) Uⁿ.  This base class builds S once (explicitly when M is sparse — H^h = P0, the
 // classical models, and H^h = W^h where B = C gives M = C — in saddle form otherwise), keeps the step solver's warm start, and provides M·x for the right-hand
 // sides.
 //
@@ -16,6 +18,10 @@
 // QP.  SchemeParameters::condense = false solves the full QP instead.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "cdyn/qp/condensation.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 
@@ -25,9 +31,16 @@ class StepQPScheme : public TimeScheme {
  public:
   // J(Uⁿ, Vⁿ) = ½ Vᵀ C V + ½ UᵀAU − LᵀU of the full field.
   Energy energy(const State& s) const override;
+  // The step QP's warm start and whether its bubbles are still condensed; the schemes
+  // add what they remember.
+  SchemeMemory memory() const override;
+  void restore(const SchemeMemory& m) override;
 
  protected:
-  StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m, bool condense = true);
+  // (a, m): the undamped scheme's factors; the damping's share is added here for a step
+  // whose increment is s (X − Uⁿ).
+  StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m, bool condense = true,
+               const RayleighDamping& damping = {}, double s = 1.0);
 
   // M x = Bᵀ (C⁻¹ B x): the momentum of the velocity of x, by the same route as inertia()
   // below (not the explicit M, which has more entries than B and Bᵀ together for P1+/P0).
@@ -51,28 +64,40 @@ class StepQPScheme : public TimeScheme {
   // problem's bounds are constant): t is the time level the scheme constrains.
   void constrain_at(double t);
 
+  // A vector the scheme keeps from the steps before (U^{n−1}, Newmark's V̇ⁿ), empty
+  // before the first step: memory() stores it under `name` and restore() reads it back.
+  // (The vector must live as long as the scheme: a member.)
+  void remember(const std::string& name, Eigen::VectorXd* v) { remembered_.emplace_back(name, v); }
+
   // The explicit M when the mass model has one (H^h = P0, classical models), or C when B = C.
   const std::optional<SparseMatrix>& explicit_mass() const { return M_; }
 
-  // S = aA + (m/dt²) M with another m (the bounds back to the problem's K̄^h): a new S
-  // for the solver, which then factorizes it again.
-  void set_mass_factor(double m);
-  double mass_factor() const { return m_; }
+  // S = aA + (m/dt²) M with other factors (the bounds back to the problem's K̄^h): a
+  // new S for the solver, which then factorizes it again.  Nothing when they are the
+  // current ones.
+  void set_factors(double a, double m);
+
+  // The work of the damping force (αM + βA) δU/h over a step of length h whose
+  // increment is δU: W_d = (α δUᵀMδU + β δUᵀAδU)/h ≥ 0 (0 without damping).
+  double damping_work(const Eigen::VectorXd& dU, double h) const;
 
   const ConstrainedProblem& p_;
   StepSolver& solver_;
   double dt_;
+  const RayleighDamping damping_;
 
  private:
-  void build(double m);
+  void build(double a, double m);
+  void end_condensation();  // the full QP from now on
 
-  double a_, m_ = 0.0;
+  double a_ = 0.0, m_ = 0.0;
   bool condense_;
   std::optional<SparseMatrix> M_;
   std::optional<DiagonalCondensation> condensation_;
   BoundQP qp_;
   QPResult last_;
   bool has_last_ = false;
+  std::vector<std::pair<std::string, Eigen::VectorXd*>> remembered_;
 };
 
 }  // namespace cdyn
@@ -81,7 +106,7 @@ namespace cdyn {
 // The schemes built on StepQPScheme (one file each).
 // condense: see StepQPScheme (static condensation of the bubbles).
 std::unique_ptr<TimeScheme> make_backward_euler(const ConstrainedProblem& p, StepSolver& solver, double dt,
-                                                bool condense = true);
+                                                const SchemeParameters& parameters = {});
 std::unique_ptr<TimeScheme> make_midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt,
                                           const SchemeParameters& parameters);
 std::unique_ptr<TimeScheme> make_midpoint_end(const ConstrainedProblem& p, StepSolver& solver, double dt,

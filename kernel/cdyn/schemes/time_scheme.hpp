@@ -15,6 +15,8 @@
 
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/qp/step_solver.hpp"
+#include "cdyn/schemes/damping.hpp"
+#include "cdyn/schemes/scheme_memory.hpp"
 
 namespace cdyn {
 
@@ -44,8 +46,12 @@ struct StepStats {
   int substeps = 0;           // discrete_gradient: halvings of dt at a stiff switch
   // The step's work of the data in t on the body (a load L(t), a moving obstacle;
   // problems/data_work.hpp), set by a scheme whose energy balances it exactly: with
-  // discrete_gradient H^{n+1} − Hⁿ = external_work (0 when nothing depends on t).
+  // discrete_gradient H^{n+1} + W_d − Hⁿ = external_work (0 when nothing depends on t).
   std::optional<double> external_work;
+  // The work of the Rayleigh damping force over the step (schemes/damping.hpp), ≥ 0:
+  // J^{n+1} + dissipated − Jⁿ is the contact's work (and the data's) for the midpoint
+  // rules, 0 for discrete_gradient, ≤ 0 for backward Euler (docs/schemes.md).
+  double dissipated = 0.0;
 };
 
 // How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):
@@ -80,6 +86,14 @@ class TimeScheme {
   virtual void initialize(State& s) { (void)s; }
   // How the full-step states get their massless part.
   virtual FullSteps full_steps() const { return FullSteps::Solved; }
+  // What the scheme remembers of the steps before (schemes/scheme_memory.hpp): with the
+  // State, everything needed to go on.
+  virtual SchemeMemory memory() const = 0;
+  // Goes on from a memory (this scheme's, or that of a scheme made alike in another
+  // run), clearing the step solver's caches: after restore(m) this scheme computes, from
+  // the State that went with m, the same steps bit for bit as any scheme made alike and
+  // restored from m.  InputError (parameter "memory") for a memory of another scheme.
+  virtual void restore(const SchemeMemory& m) = 0;
 };
 
 // The parameters of the schemes that have some (docs/schemes.md).
@@ -95,12 +109,16 @@ struct SchemeParameters {
   // terms of ΔH = ΔK + ΔΨ (½VᵀCV, |Ψ| and the kinetic change's two parts: the round-off
   // of ΔH is a few ε of them; docs/schemes.md, "The discrete gradient scheme").
   double energy_tol = 1e-12;
+  // Rayleigh damping D = αM + βA (backward_euler, midpoint, midpoint_end,
+  // discrete_gradient; the other schemes refuse it).
+  RayleighDamping damping;
 };
 
 // name: backward_euler | midpoint | midpoint_end | newmark | paoli_schatzman |
 // energy_conserving | discrete_gradient.  The problem and the solver must outlive the scheme.  Throws
-// InputError for an unknown name, dt <= 0, parameters out of range, or a mass model
-// the scheme does not accept (paoli_schatzman needs an invertible M in W^h).
+// InputError for an unknown name, dt <= 0, parameters out of range, a mass model the
+// scheme does not accept (paoli_schatzman needs an invertible M in W^h), or damping
+// asked of a scheme without it (parameter "damping").
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
                                              StepSolver& solver, double dt, const SchemeParameters& parameters = {});
 std::vector<std::string> time_scheme_names();

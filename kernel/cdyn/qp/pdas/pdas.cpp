@@ -104,6 +104,12 @@ PDASSolver::PDASSolver(const QPOptions& options) : impl_(std::make_unique<Impl>(
   if (impl_->opt.max_iterations == 0) impl_->opt.max_iterations = 100;
 }
 PDASSolver::~PDASSolver() = default;
+
+void PDASSolver::clear() {
+  const QPOptions options = impl_->opt;
+  impl_ = std::make_unique<Impl>();
+  impl_->opt = options;
+}
 const PDASSolver::Counters& PDASSolver::counters() const { return impl_->counters; }
 
 QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {

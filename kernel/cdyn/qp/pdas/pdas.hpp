@@ -52,8 +52,10 @@ class PDASSolver : public StepSolver {
   ~PDASSolver() override;
   std::string name() const override { return "pdas"; }
   QPResult solve(const BoundQP& qp, const QPResult* warm_start = nullptr) override;
+  void clear() override;
 
-  // Work done since construction (for tests and benchmarks): analyses, factorizations,
+  // Work done since construction or the last clear() (for tests and benchmarks; cg_pays
+  // steers by the CG counts): analyses, factorizations,
   // row updates, solves, projected Newton iterations, CG solves and iterations, and the
   // seconds spent in each kind of linear algebra.
   using Counters = PDASCounters;
