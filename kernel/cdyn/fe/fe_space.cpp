@@ -11,7 +11,8 @@ namespace cdyn {
 
 FESpace::FESpace(const Mesh& mesh, Element element, int components)
     : mesh_(&mesh), element_(element), components_(components), local_dofs_(cdyn::local_dofs(element, mesh.dim)) {
-  if (components < 1 || components > 3) throw InputError("a space has 1, 2 or 3 components");
+  if (components != 1 && components != mesh.dim)
+    throw InputError("a space has 1 component or one per coordinate (" + std::to_string(mesh.dim) + " components on this mesh)");
   const int nv = mesh.n_vertices(), nc = mesh.n_cells(), d = mesh.dim;
   cell_dofs_.resize(static_cast<std::size_t>(nc) * local_dofs_);
   auto centroid = [&](int c) { return CellGeometry(mesh, c).map(local_node(Element::P0, d, 0)); };
