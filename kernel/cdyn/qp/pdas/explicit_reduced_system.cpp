@@ -52,7 +52,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
     updates_measured_ = 0;
   }
   S_tilde_ = S_;
-  factorize(S_, "S is not positive definite (CHOLMOD: the factorization breaks down");
+  factorize(chol_, S_, "S is not positive definite (CHOLMOD: the factorization breaks down");
   factor_held_.assign(n_, 0);
   block_mode_ = false;
   updates_since_factorization_ = 0;
@@ -62,13 +62,16 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   if (opt_.pdas_cg_iterations > 0) cg_.emplace(S_);  // (references the member S_)
 }
 
-// A numeric factorization of `matrix` (timed, counted); NumericalError "pdas: <what> at
-// unknown i)" if CHOLMOD finds it not positive definite.
-void ExplicitReducedSystem::factorize(const SparseMatrix& matrix, const std::string& what) {
+// A numeric factorization of `matrix` by `factor` (timed, counted); NumericalError
+// "pdas: <what> at unknown i)" if CHOLMOD finds it not positive definite, i the QP's
+// unknown (unknowns[row] when the matrix is a block of S).
+void ExplicitReducedSystem::factorize(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
+                                      const std::vector<int>* unknowns) {
   ScopeTimer timer(counters_.factorization_s);
-  const int minor = chol_.factorize(matrix);
+  const int minor = factor.factorize(matrix);
   ++counters_.factorizations;
-  if (minor >= 0) throw NumericalError("pdas: " + what + " at unknown " + std::to_string(minor) + ")");
+  if (minor >= 0)
+    throw NumericalError("pdas: " + what + " at unknown " + std::to_string(unknowns ? (*unknowns)[minor] : minor) + ")");
 }
 
 void ExplicitReducedSystem::refactorize(const HeldSet& held) {
@@ -78,7 +81,7 @@ void ExplicitReducedSystem::refactorize(const HeldSet& held) {
     factorize_free_block(held);
   } else {
     replace_held_by_identity(S_, held, S_tilde_);
-    factorize(S_tilde_, "the reduced matrix S_II is not positive definite (breakdown");
+    factorize(chol_, S_tilde_, "the reduced matrix S_II is not positive definite (breakdown");
   }
   factor_held_ = held;
   updates_since_factorization_ = 0;
@@ -110,20 +113,17 @@ void ExplicitReducedSystem::factorize_free_block(const HeldSet& held) {
   }
   S_II_ = Eigen::Map<const SparseMatrix>(m, m, static_cast<int>(inner.size()), outer.data(), inner.data(), value.data());
   S_II_.makeCompressed();
+  if (m == 0) return;  // every unknown held: X = b̃ (solve_free_block)
   if (!block_chol_.analyzed_for(S_II_)) {
     block_chol_.analyze(S_II_);
     ++counters_.analyses;
   }
-  ScopeTimer timer(counters_.factorization_s);
-  const int minor = block_chol_.factorize(S_II_);
-  ++counters_.factorizations;
-  if (minor >= 0)
-    throw NumericalError("pdas: the reduced matrix S_II is not positive definite (breakdown at unknown " +
-                         std::to_string(free_[minor]) + ")");
+  factorize(block_chol_, S_II_, "the reduced matrix S_II is not positive definite (breakdown", &free_);
 }
 
 // S̃ y = b with the factor of S_II: y_A = b_A, S_II y_I = b_I.
 Eigen::VectorXd ExplicitReducedSystem::solve_free_block(const Eigen::VectorXd& b) const {
+  if (free_.empty()) return b;
   Eigen::VectorXd b_I(free_.size());
   for (std::size_t k = 0; k < free_.size(); ++k) b_I[k] = b[free_[k]];
   const Eigen::VectorXd y_I = block_chol_.solve(b_I);

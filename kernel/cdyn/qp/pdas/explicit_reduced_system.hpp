@@ -58,7 +58,8 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool refactorization_may_help() const override { return cg_mode_ || updates_since_factorization_ > 0; }
 
  private:
-  void factorize(const SparseMatrix& matrix, const std::string& what);
+  void factorize(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
+                 const std::vector<int>* unknowns = nullptr);
   void refactorize(const HeldSet& held);
   void factorize_free_block(const HeldSet& held);
   Eigen::VectorXd solve_free_block(const Eigen::VectorXd& b) const;
