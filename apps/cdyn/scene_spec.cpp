@@ -339,6 +339,14 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   v.options.pdas_free_block = s.number("solver.free_block", v.options.pdas_free_block);
   if (!(v.options.pdas_free_block >= 0.0 && v.options.pdas_free_block <= 1.0))
     throw InputError("solver.free_block: a fraction of the unknowns, in [0, 1]");
+  // solver.linear: how pdas solves its reduced systems, a kept Cholesky factor (with
+  // CG while the active set moves) or CG alone (docs/performance.md, 3D)
+  const std::string linear = s.string("solver.linear", "factor");
+  if (linear != "factor" && linear != "cg")
+    throw InputError("solver.linear: expected \"factor\" or \"cg\" (got '" + linear + "')");
+  if (linear == "cg" && v.name != "pdas")
+    throw InputError("solver.linear: the CG path is pdas's (solver.name = " + v.name + ")");
+  v.options.pdas_cg_only = linear == "cg";
 }
 
 // units = "length, force, time", e.g. "mm, N, s".
@@ -416,7 +424,7 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec, const
       {"normal", "obstacle.normal"}, {"contact", "obstacle.where"}, {"dt", "time.dt"},
       {"beta", "time.beta"},     {"gamma", "time.gamma"},           {"restitution", "time.restitution"},
       {"scheme", "time.scheme"}, {"tol", "solver.tol"},             {"max_iterations", "solver.max_iterations"},
-      {"solver", "solver.name"}, {"mesh", "mesh.kind"}};
+      {"solver", "solver.name"}, {"mesh", "mesh.kind"},         {"linear", "solver.linear"}};
   if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
   // gmsh parameters of the .geo (meshing/cdyn/gmsh_mesh.hpp)
   if (parameter.rfind("setnumber.", 0) == 0) return "mesh.set." + parameter.substr(10);
