@@ -260,6 +260,10 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.contact_every = s.output.contact_every;
   sim.scheme_name = s.time.scheme == "auto" ? recommended_scheme(p) : s.time.scheme;
   sim.solver_name = s.solver.name;
+  // (the step QP of a continuous H^h is in saddle form: no explicit S for CG alone)
+  if (s.solver.options.pdas_cg_only && !p.mass->matrix())
+    throw InputError("solver.linear: the CG path needs an explicit step matrix; with " + sim.pair +
+                     " the step is in saddle form (H^h continuous), solved by UMFPACK: use solver.linear = \"factor\"");
   sim.tol = s.solver.options.tol;
   with_scene_keys(s, [&] {
     sim.solver = make_step_solver(sim.solver_name, s.solver.options);
