@@ -38,7 +38,7 @@ Field parse_expression(const std::string& text, const std::string& key) {
   // muParser can also fail while evaluating (a compiled expression whose stack
   // evaluation it refuses); that too is the text's fault, reported as bad input with
   // the key, never as a foreign exception type escaping to the caller.
-  return [e, text, key](const Point& p, double t) {
+  Field f = [e, text, key](const Point& p, double t) {
     e->x = p.x, e->y = p.y, e->z = p.z, e->t = t;
     try {
       return e->parser.Eval();
@@ -46,6 +46,10 @@ Field parse_expression(const std::string& text, const std::string& key) {
       throw InputError(key + ": bad expression '" + text + "': " + err.GetMsg());
     }
   };
+  // muParser knows which variables the compiled expression reads
+  const auto used = e->parser.GetUsedVar();
+  if (!used.count("x") && !used.count("y") && !used.count("z")) f.uniform_in_space();
+  return f;
 }
 
 bool depends_on_time(const std::string& text) {

@@ -201,3 +201,39 @@ TEST(Assembly, ElasticityPassesThePatchTest) {
     EXPECT_LE((U - W.interpolate(u)).lpNorm<Eigen::Infinity>(), 1e-12) << to_string(e);
   }
 }
+
+TEST(Assembly, AUniformFieldIsIntegratedFromOneEvaluation) {
+  // A field marked uniform in space (an expression without x, y, z) is evaluated once
+  // per time; the load is the same sum of the same products, so the vectors agree bit
+  // for bit with those of the unmarked field, and the field is called once, not at
+  // every quadrature point.
+  const Mesh mesh = unit_square_mesh(4);
+  int calls = 0;
+  auto f = [&calls](const Point&, double t) {
+    ++calls;
+    return -0.6 + 3.0 * std::sin(60.0 * t);
+  };
+  const Field varying(f);
+  const Field uniform = Field(f).uniform_in_space();
+  EXPECT_TRUE(varying.depends_on_space());
+  EXPECT_FALSE(uniform.depends_on_space());
+  for (Element e : {Element::P1, Element::P1Bubble, Element::P2}) {
+    const FESpace W(mesh, e, 2);
+    calls = 0;
+    const Eigen::VectorXd a = assemble_load(W, {varying, uniform}, 0.3);
+    const int calls_varying = calls;
+    calls = 0;
+    const Eigen::VectorXd b = assemble_load(W, {uniform, uniform}, 0.3);
+    EXPECT_EQ(calls, 2);  // once per component
+    EXPECT_GT(calls_varying, mesh.n_cells());
+    // component x of a (varying) equals component x of b (uniform), exactly
+    for (int s = 0; s < W.n_scalar_dofs(); ++s) EXPECT_EQ(a[W.dof(s, 0)], b[W.dof(s, 0)]) << to_string(e);
+    const std::vector<int> all{0, 1, 2, 3};
+    calls = 0;
+    const Eigen::VectorXd ga = assemble_boundary_load(W, all, {varying, varying}, 0.3);
+    calls = 0;
+    const Eigen::VectorXd gb = assemble_boundary_load(W, all, {uniform, uniform}, 0.3);
+    EXPECT_EQ(calls, 2);
+    EXPECT_EQ(ga, gb) << to_string(e);
+  }
+}

@@ -179,13 +179,22 @@ Eigen::VectorXd weighted_load(const FESpace& W, const CellCoefficient* weight, c
   const QuadratureRule q = cell_quadrature(W.dim(), 2 * W.degree() + 2);
   const Tabulation tw(W, q);
   Eigen::VectorXd L = Eigen::VectorXd::Zero(W.n_dofs());
+  // A component uniform in space is evaluated once (its value at the origin).
+  std::vector<double> uniform_value(f.size(), 0.0);
+  bool any_varies = false;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    if (f[k].depends_on_space())
+      any_varies = true;
+    else
+      uniform_value[k] = f[k](Point{}, t);
+  }
   for (int c = 0; c < W.mesh().n_cells(); ++c) {
     const CellGeometry K(W.mesh(), c);
     const auto d = W.cell_dofs(c);
     for (int p = 0; p < q.size(); ++p) {
-      const Point x = K.map(q.points[p]);
+      const Point x = any_varies ? K.map(q.points[p]) : Point{};
       for (int k = 0; k < W.components(); ++k) {
-        double fw = f[k](x, t) * q.weights[p] * K.det;
+        double fw = (f[k].depends_on_space() ? f[k](x, t) : uniform_value[k]) * q.weights[p] * K.det;
         if (weight) fw *= (*weight)[c];
         for (int i = 0; i < tw.n; ++i) L[W.dof(d[i], k)] += fw * tw.value[p][i];
       }

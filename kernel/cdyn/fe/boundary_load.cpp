@@ -87,6 +87,10 @@ Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>&
                                               : cell_quadrature(2, 2 * W.degree() + 2);
   Eigen::VectorXd L = Eigen::VectorXd::Zero(W.n_dofs());
   std::vector<double> phi(W.local_dofs());
+  // a component uniform in space (Field::depends_on_space) is evaluated once
+  std::vector<double> uniform_value(g.size(), 0.0);
+  for (std::size_t c = 0; c < g.size(); ++c)
+    if (!g[c].depends_on_space()) uniform_value[c] = g[c](Point{}, t);
   for (std::size_t f = 0; f < mesh.boundary.size(); ++f) {
     if (std::find(parts.begin(), parts.end(), mesh.boundary[f].part) == parts.end()) continue;
     const FacetInCell& k = where[f];
@@ -96,7 +100,7 @@ Eigen::VectorXd assemble_boundary_load(const FESpace& W, const std::vector<int>&
     auto add = [&](const RefPoint& xi, const Point& x, double weight, double jacobian) {
       shape_values(W.element(), W.dim(), xi, phi.data());
       for (int c = 0; c < W.components(); ++c) {
-        const double gw = g[c](x, t) * weight * jacobian;
+        const double gw = (g[c].depends_on_space() ? g[c](x, t) : uniform_value[c]) * weight * jacobian;
         for (int i = 0; i < W.local_dofs(); ++i) L[W.dof(d[i], c)] += gw * phi[i];
       }
     };

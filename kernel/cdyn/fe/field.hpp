@@ -42,8 +42,19 @@ class Field {
 
   explicit operator bool() const { return static_cast<bool>(f_); }
 
+  // Whether the value may vary with the point (true unless the field was marked
+  // uniform: an expression without x, y, z, e.g. a load "-0.6 + 3*sin(60*t)").  The
+  // assembly evaluates a uniform field once per time instead of at every quadrature
+  // point (fe/assembly.cpp): the same integrals, one evaluation of the expression.
+  bool depends_on_space() const { return depends_on_space_; }
+  Field& uniform_in_space() {
+    depends_on_space_ = false;
+    return *this;
+  }
+
  private:
   std::function<double(const Point&, double)> f_;
+  bool depends_on_space_ = true;
 };
 
 }  // namespace cdyn

@@ -209,15 +209,18 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   const std::vector<double> g(d.gravity.begin(), d.gravity.begin() + dim);
   const CellCoefficient rho = material.rho;
   if (rho.is_uniform())
-    for (int k = 0; k < dim; ++k)
-      f[k] = [fk = f[k], rho_g = rho.value() * g[k]](const Point& x, double t) { return fk(x, t) + rho_g; };
+    for (int k = 0; k < dim; ++k) {
+      Field with_weight = [fk = f[k], rho_g = rho.value() * g[k]](const Point& x, double t) { return fk(x, t) + rho_g; };
+      if (!f[k].depends_on_space()) with_weight.uniform_in_space();
+      f[k] = with_weight;
+    }
   bool weighted_gravity = false;
   for (double gk : g) weighted_gravity = weighted_gravity || (!rho.is_uniform() && gk != 0.0);
   p.L_full = [&W, f, gN, neumann, g, rho, weighted_gravity](double t) {
     Eigen::VectorXd L = assemble_load(W, f, t);
     if (weighted_gravity) {
       std::vector<Field> gk;
-      for (double value : g) gk.push_back([value](const Point&, double) { return value; });
+      for (double value : g) gk.push_back(Field([value](const Point&, double) { return value; }).uniform_in_space());
       L += assemble_load(W, rho, gk, t);
     }
     if (!neumann.empty()) L += assemble_boundary_load(W, neumann, gN, t);
