@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <thread>
 
 #include "cdyn/base/error.hpp"
 #include "expression.hpp"
@@ -329,6 +330,13 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   v.options.pdas_free_block = s.number("solver.free_block", v.options.pdas_free_block);
   if (!(v.options.pdas_free_block >= 0.0 && v.options.pdas_free_block <= 1.0))
     throw InputError("solver.free_block: a fraction of the unknowns, in [0, 1]");
+  v.threads = s.integer("solver.threads", 0);
+  if (v.threads < 0)
+    throw InputError("solver.threads: must be 0 (the environment's count, OMP_NUM_THREADS) or a number of threads ≥ 1");
+  // more threads than cores: accepted (the results are the same), but slower than one per core
+  if (const unsigned cores = std::thread::hardware_concurrency(); cores > 0 && unsigned(v.threads) > cores)
+    spec.warnings.push_back("solver.threads = " + std::to_string(v.threads) + " is more than the " +
+                            std::to_string(cores) + " cores of this machine: the threads will share them");
 }
 
 // units = "length, force, time", e.g. "mm, N, s".
