@@ -7,7 +7,8 @@ ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::pat
                                const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
     : mesh_(*sim.mesh), contact_(sim.problem), csv_(file, journal, resume) {
   if (csv_.resumed()) return;
-  csv_.rows() << "step,t,vertex,x,y,s,gap,force,pressure\n";
+  csv_.rows() << (mesh_.dim == 3 ? "step,t,vertex,x,y,z,s,gap,force,pressure\n"
+                                  : "step,t,vertex,x,y,s,gap,force,pressure\n");
   csv_.end_rows();
 }
 
@@ -20,7 +21,9 @@ double ContactHistory::record(int step, double t, const Eigen::VectorXd& U_full,
     total += force;
     if (!write) continue;
     const Point& a = mesh_.vertices[c.vertex];
-    csv << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << "," << c.s << ","
+    csv << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << ",";
+    if (mesh_.dim == 3) csv << a.z << ",";
+    csv << c.s << ","
         << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0) << "\n";
   }
   if (write) csv_.end_rows();
@@ -29,20 +32,20 @@ double ContactHistory::record(int step, double t, const Eigen::VectorXd& U_full,
 
 namespace {
 
-nlohmann::ordered_json snapshot_json(const std::optional<ImpactMonitor::Snapshot>& s) {
+nlohmann::ordered_json snapshot_json(const std::optional<ImpactMonitor::Snapshot>& s, int dim) {
   if (!s) return nullptr;
   nlohmann::ordered_json j;
   j["step"] = s->step;
   j["t"] = s->t;
   j["E"] = s->E;
   j["E_kin"] = s->E_kin;
-  j["momentum"] = {s->P.x, s->P.y};
+  j["momentum"] = dim == 3 ? nlohmann::ordered_json{s->P.x, s->P.y, s->P.z} : nlohmann::ordered_json{s->P.x, s->P.y};
   return j;
 }
 
 }  // namespace
 
-nlohmann::ordered_json impact_json(const ImpactMonitor::Summary& s) {
+nlohmann::ordered_json impact_json(const ImpactMonitor::Summary& s, int dim) {
   nlohmann::ordered_json j;
   j["contact"] = s.contact;
   if (!s.contact) return j;
@@ -57,8 +60,8 @@ nlohmann::ordered_json impact_json(const ImpactMonitor::Summary& s) {
   j["force_width"] = s.force_width;
   j["half_sine_duration"] = s.half_sine_duration;
   j["half_sine_peak_force"] = s.half_sine_peak_force;
-  j["before"] = snapshot_json(s.before);
-  j["after"] = snapshot_json(s.after);
+  j["before"] = snapshot_json(s.before, dim);
+  j["after"] = snapshot_json(s.after, dim);
   return j;
 }
 

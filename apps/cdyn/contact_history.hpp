@@ -42,6 +42,6 @@ class ContactHistory {
 };
 
 // summary.json's "impact" entry.
-nlohmann::ordered_json impact_json(const ImpactMonitor::Summary& s);
+nlohmann::ordered_json impact_json(const ImpactMonitor::Summary& s, int dim);
 
 }  // namespace cdyn::app

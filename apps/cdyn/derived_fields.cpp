@@ -7,10 +7,10 @@ namespace cdyn::app {
 
 namespace {
 
-// A symmetric plane-strain tensor as the 9 components of a 3 × 3 tensor, row by row
+// A symmetric tensor as the 9 components of a 3 × 3 tensor, row by row
 // (xx xy xz / yx yy yz / zx zy zz), the layout ParaView reads as a tensor.
-void append_tensor(std::vector<double>& to, const PlaneStrainTensor& t) {
-  to.insert(to.end(), {t.xx, t.xy, 0.0, t.xy, t.yy, 0.0, 0.0, 0.0, t.zz});
+void append_tensor(std::vector<double>& to, const SymmetricTensor& t) {
+  to.insert(to.end(), {t.xx, t.xy, t.xz, t.xy, t.yy, t.yz, t.xz, t.yz, t.zz});
 }
 
 // sigma, epsilon (9 components) and von_mises (1) of a list of stress states.
@@ -27,13 +27,13 @@ std::vector<FieldArray> stress_arrays(const std::vector<StressState>& states) {
 }  // namespace
 
 DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
-  if (sim.components == 2 && sim.has_obstacle) contact_.emplace(sim.problem);
+  if (sim.components > 1 && sim.has_obstacle) contact_.emplace(sim.problem);
 }
 
 ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy) const {
   ExtraFields out;
   const Mesh& mesh = *sim_.mesh;
-  if (sim_.components == 2 && sim_.spec.output.stress) {
+  if (sim_.components > 1 && sim_.spec.output.stress) {
     const std::vector<StressState> cells =
         cell_stress(*sim_.problem.W, U_full, sim_.materials.lambda, sim_.materials.mu);
     out.cell = stress_arrays(cells);
@@ -46,7 +46,7 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
         pressure.values[a.vertex] = contact_->pressure(reaction_xy, a);
     out.point.push_back(std::move(pressure));
   }
-  if (sim_.components == 2 && !mesh.cell_region.empty())
+  if (sim_.components > 1 && !mesh.cell_region.empty())
     out.cell.push_back({"region", 1, std::vector<double>(mesh.cell_region.begin(), mesh.cell_region.end())});
   return out;
 }

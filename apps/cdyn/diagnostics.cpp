@@ -81,15 +81,23 @@ void infeasible_initial_state(const Simulation& sim, double violation) {
       for (const auto& c : p.contact_nodes) {
         if (c.obstacle != static_cast<int>(k)) continue;
         const Point& a = sim.mesh->vertices[c.vertex];
-        const Point x{a.x + U[W.vertex_dof(c.vertex, 0)], a.y + U[W.vertex_dof(c.vertex, 1)]};
-        const double phi = p.obstacles[k].gap(x, 0.0);
+        double x[3] = {a.x, a.y, a.z};
+        for (int j = 0; j < W.components(); ++j) x[j] += U[W.vertex_dof(c.vertex, j)];
+        const double phi = p.obstacles[k].gap(Point{x[0], x[1], x[2]}, 0.0);
         reversed_feasible = reversed_feasible && phi <= 1e-12;
         violated = violated || phi < -1e-12;
       }
       if (!reversed_feasible || !violated) continue;
-      const Point n = rigid[k].normal;
-      char flip[80];
-      std::snprintf(flip, sizeof flip, "[%g, %g]", -n.x + 0.0, -n.y + 0.0);  // + 0.0: no "-0"
+      // the normal as given (absent: the default e_y or e_z), reversed
+      std::vector<double> n = rigid[k].normal;
+      if (n.empty()) n = W.components() == 3 ? std::vector<double>{0, 0, 1} : std::vector<double>{0, 1};
+      std::string flip = "[";
+      for (std::size_t j = 0; j < n.size(); ++j) {
+        char c[40];
+        std::snprintf(c, sizeof c, "%s%g", j ? ", " : "", -n[j] + 0.0);  // + 0.0: no "-0"
+        flip += c;
+      }
+      flip += "]";
       throw InputError(rigid[k].key + ".normal: the body starts on the wrong side of the plane" + by +
                        "; the normal points from the obstacle into the body's side, and " + flip +
                        " would make the initial state feasible");

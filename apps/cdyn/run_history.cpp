@@ -11,10 +11,14 @@ namespace cdyn::app {
 namespace {
 
 // The probe columns of history.csv: u, v and λ for a scalar field; for elasticity the
-// two components of u and v and the seed's normal multiplier λ_N ≤ 0.
+// components of u and v (x, y and in space z) and the seed's normal multiplier λ_N ≤ 0.
 std::vector<std::string> probe_columns(const Simulation& sim, const Probe& pr) {
   if (sim.components == 1) return {"u@" + pr.name, "v@" + pr.name, "lambda@" + pr.name};
-  return {"ux@" + pr.name, "uy@" + pr.name, "vx@" + pr.name, "vy@" + pr.name, "lambda@" + pr.name};
+  std::vector<std::string> out;
+  for (const char* field : {"u", "v"})
+    for (int k = 0; k < sim.components; ++k) out.push_back(field + std::string(1, "xyz"[k]) + "@" + pr.name);
+  out.push_back("lambda@" + pr.name);
+  return out;
 }
 
 // The probe values of the current state, in the order of probe_columns: u (full
@@ -34,7 +38,7 @@ std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::V
   Point n;  // the normal of the obstacle that constrains the vertex (λ = 0 elsewhere)
   for (const auto& c : sim.problem.contact_nodes)
     if (c.vertex == pr.vertex) n = c.normal;
-  out.push_back(lambda.x * n.x + lambda.y * n.y + 0.0);  // λ_N = λ·n (+ 0.0: no −0)
+  out.push_back(lambda.x * n.x + lambda.y * n.y + lambda.z * n.z + 0.0);  // λ_N = λ·n (+ 0.0: no −0)
   return out;
 }
 
@@ -59,9 +63,9 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
   std::ostringstream csv;  // the header (a resumed run has it among the rows taken back)
   csv << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s,step_s";
   if (damped_) csv << ",dissipated";
-  if (sim.components == 2) {
+  if (sim.components > 1) {
     momentum_.emplace(sim.problem);
-    csv << ",contact_force,px,py";
+    csv << ",contact_force,px,py" << (sim.components == 3 ? ",pz" : "");
     if (sim.has_obstacle) {
       contact_.emplace(sim, out / "contact.csv", journal_dir.empty() ? journal_dir : journal_dir / "contact.csv",
                        mark(resume, &HistoryMemory::contact));
@@ -91,6 +95,7 @@ void History::record(int step, const State& s, const StepStats& st, double step_
     const double force = contact_ ? contact_->record(step, s.t, U_full, reaction_xy, write) : 0.0;
     const Point P = (*momentum_)(s.V);
     csv << "," << force << "," << P.x << "," << P.y;
+    if (sim_.components == 3) csv << "," << P.z;
     impact_.observe({step, s.t, E.total(), E.kinetic, P}, st.active, force);
     if (penetration_) {
       const double depth = (*penetration_)(U_full, s.t);
@@ -120,7 +125,7 @@ void History::close() {
 }
 
 nlohmann::ordered_json History::impact() const {
-  return contact_ ? impact_json(impact_.summary(sim_.dt)) : nlohmann::ordered_json();
+  return contact_ ? impact_json(impact_.summary(sim_.dt), sim_.mesh->dim) : nlohmann::ordered_json();
 }
 
 }  // namespace cdyn::app

@@ -14,41 +14,51 @@
 
 namespace cdyn::app {
 
-// Contact of 3D elastic bodies (nodal normals on triangles, their rotation) is not
-// built yet: an elasticity scene on a 3D mesh is refused rather than run as something else.
-const std::string kNoElasticityIn3D =
-    "physics.model: elasticity needs a 2D mesh (plane strain); elastodynamic contact in 3D is not available yet "
-    "(docs/three_d.md)";
-
 namespace {
+
+// The names of a vector's entries, for messages: "[x, y]", "[x, y, z]", or both.
+std::string entries(int components) {
+  return components == 2 ? "[x, y]" : components == 3 ? "[x, y, z]" : "[x, y] or [x, y, z]";
+}
 
 Expression expression(const Scene& s, const std::string& key, const std::string& fallback) {
   const std::string text = s.string(key, fallback);
   return {key, text, parse_expression(text, key), depends_on_time(text)};
 }
 
-// A datum with one expression per component: a string (one component) or a list.
+// A datum with one expression per component: a string (one component) or a list of
+// one per coordinate (components = 2 or 3; 0: a gmsh mesh not read yet, 2 or 3
+// accepted and matched with the mesh by simulation.cpp).  An absent vector datum is
+// empty: zero in every component.
 std::vector<Expression> expressions(const Scene& s, const std::string& key, int components) {
   if (components == 1) return {expression(s, key, "0")};
-  const std::vector<std::string> text = s.strings(key, {"0", "0"});
-  if (static_cast<int>(text.size()) != components)
-    throw InputError(key + ": expected two expressions [x component, y component] (got " + std::to_string(text.size()) +
-                     ")");
+  if (!s.has(key)) return {};
+  const std::vector<std::string> text = s.strings(key);
+  const int n = static_cast<int>(text.size());
+  if (components == 0 ? n != 2 && n != 3 : n != components)
+    throw InputError(key + ": expected one expression per component " + entries(components) + " (got " +
+                     std::to_string(n) + ")");
   std::vector<Expression> out;
   for (const std::string& t : text) out.push_back({key, t, parse_expression(t, key), depends_on_time(t)});
   return out;
 }
 
-Point point(const Scene& s, const std::string& key, Point fallback) {
-  if (!s.has(key)) return fallback;
+// A vector of numbers, one per coordinate (components as for expressions()); empty
+// when the key is absent.
+std::vector<double> numbers(const Scene& s, const std::string& key, int components) {
+  if (!s.has(key)) return {};
   const std::vector<double> c = s.numbers(key);
-  if (c.size() != 2 || !std::isfinite(c[0]) || !std::isfinite(c[1]))
-    throw InputError(key + ": expected two finite numbers [x, y]");
-  return {c[0], c[1]};
+  const int n = static_cast<int>(c.size());
+  bool finite = true;
+  for (double x : c) finite = finite && std::isfinite(x);
+  if ((components == 0 ? n != 2 && n != 3 : n != components) || !finite)
+    throw InputError(key + ": expected finite numbers " + entries(components));
+  return c;
 }
 
-// One rigid obstacle of elasticity from the table `key` ("obstacle" or "obstacles[k]").
-SceneSpec::Rigid rigid_obstacle(const Scene& s, const std::string& key) {
+// One rigid obstacle of elasticity from the table `key` ("obstacle" or "obstacles[k]");
+// dim as for expressions().
+SceneSpec::Rigid rigid_obstacle(const Scene& s, const std::string& key, int dim) {
   SceneSpec::Rigid r;
   r.key = key;
   r.name = s.string(key + ".name", key);
@@ -61,14 +71,11 @@ SceneSpec::Rigid rigid_obstacle(const Scene& s, const std::string& key) {
     r.gap = expression(s, key + ".gap", "0");
     return r;
   }
-  const std::vector<std::string> p = s.strings(key + ".point", {"0", "0"});
-  if (p.size() != 2) throw InputError(key + ".point: expected two finite numbers [x, y] (or expressions in t)");
-  for (const std::string& text : p) {
-    Expression e{key + ".point", text, parse_expression(text, key + ".point"), depends_on_time(text)};
-    if (!std::isfinite(e.field(Point{}, 0.0))) throw InputError(key + ".point: expected two finite numbers [x, y]");
-    r.point.push_back(std::move(e));
-  }
-  r.normal = point(s, key + ".normal", {0.0, 1.0});
+  r.point = expressions(s, key + ".point", dim);
+  for (const Expression& e : r.point)
+    if (!std::isfinite(e.field(Point{}, 0.0)))
+      throw InputError(key + ".point: expected finite numbers " + entries(dim) + " (or expressions in t)");
+  r.normal = numbers(s, key + ".normal", dim);
   return r;
 }
 
@@ -97,8 +104,8 @@ void read_mesh_keys(const Scene& s, SceneSpec& spec) {
   if (m.kind != "interval" && m.kind != "unit_square" && m.kind != "unit_cube" && m.kind != "gmsh")
     throw InputError("mesh.kind: unknown kind '" + m.kind + "' (interval, unit_square, unit_cube, gmsh)");
   if (spec.physics.model == "elasticity" && m.kind == "interval")
-    throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
-  if (spec.physics.model == "elasticity" && m.kind == "unit_cube") throw InputError(kNoElasticityIn3D);
+    throw InputError("physics.model: elasticity needs a 2D (plane strain) or 3D mesh");
+  m.dim = m.kind == "interval" ? 1 : m.kind == "unit_square" ? 2 : m.kind == "unit_cube" ? 3 : 0;
   // A key of another kind would be ignored: refused (a --set of mesh.kind drops them,
   // scene.cpp).
   if (m.kind == "gmsh") {
@@ -209,7 +216,7 @@ void read_materials(const Scene& s, SceneSpec& spec) {
       if (!(m.lame.mu > 0.0) || !std::isfinite(m.lame.mu))
         throw InputError(key + ".mu: the shear modulus must be positive");
       if (!(m.lame.lambda + m.lame.mu > 0.0) || !std::isfinite(m.lame.lambda))
-        throw InputError(key + ".lambda: plane strain needs λ + μ > 0");
+        throw InputError(key + ".lambda: needs λ + μ > 0 (plane strain) or 3λ + 2μ > 0 (space)");
     }
     spec.physics.materials.push_back(m);
   }
@@ -228,8 +235,8 @@ void read_physics(const Scene& s, SceneSpec& spec) {
   }
   if (p.model == "elasticity") {
     p.lame = material(s);
-    p.f = expressions(s, "physics.f", 2);
-    p.gravity = point(s, "physics.gravity", {0.0, 0.0});
+    p.f = expressions(s, "physics.f", spec.mesh.dim);
+    p.gravity = numbers(s, "physics.gravity", spec.mesh.dim);
     read_materials(s, spec);
     return;
   }
@@ -237,12 +244,14 @@ void read_physics(const Scene& s, SceneSpec& spec) {
   p.f = {expression(s, "physics.f", "0")};
 }
 
-// dirichlet.components: ["x"], ["y"] or both (default).
-std::vector<int> components(const Scene& s) {
+// dirichlet.components: some of "x", "y" and (in space) "z"; all by default.
+std::vector<int> components(const Scene& s, int dim) {
   std::vector<int> out;
   for (const std::string& c : s.strings("dirichlet.components")) {
-    if (c != "x" && c != "y") throw InputError("dirichlet.components: expected \"x\" or \"y\" (got '" + c + "')");
-    out.push_back(c == "x" ? 0 : 1);
+    if (c != "x" && c != "y" && (c != "z" || dim == 2))
+      throw InputError("dirichlet.components: expected " + std::string(dim == 2 ? "\"x\" or \"y\"" : "\"x\", \"y\" or \"z\"") +
+                       " (got '" + c + "')");
+    out.push_back(c == "x" ? 0 : c == "y" ? 1 : 2);
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -251,23 +260,24 @@ std::vector<int> components(const Scene& s) {
 }
 
 void read_boundary(const Scene& s, SceneSpec& spec) {
-  const int nc = spec.components();
+  const bool vector = spec.physics.model == "elasticity";
+  const int nc = vector ? spec.mesh.dim : 1;  // (0: a gmsh mesh, 2 or 3)
   spec.dirichlet.parts = s.strings("dirichlet.parts");
   spec.dirichlet.value = expressions(s, "dirichlet.value", nc);
-  if (nc == 2) {
-    spec.dirichlet.components = components(s);
+  if (vector) {
+    spec.dirichlet.components = components(s, nc);
     spec.neumann.parts = s.strings("neumann.parts");
     if (s.has("neumann.traction") && spec.neumann.parts.empty())
       throw InputError("neumann.traction: given without neumann.parts");
-    spec.neumann.traction = expressions(s, "neumann.traction", 2);
+    spec.neumann.traction = expressions(s, "neumann.traction", nc);
   }
   SceneSpec::Obstacle& o = spec.obstacle;
   o.enabled = s.boolean("obstacle.enabled", true);
   o.where = s.strings("obstacle.where", {"vertices"});
-  if (nc == 2) {
-    if (s.has("obstacle.where") || !s.has("obstacles")) o.rigid.push_back(rigid_obstacle(s, "obstacle"));
+  if (vector) {
+    if (s.has("obstacle.where") || !s.has("obstacles")) o.rigid.push_back(rigid_obstacle(s, "obstacle", nc));
     for (std::size_t k = 0; k < s.count("obstacles"); ++k)
-      o.rigid.push_back(rigid_obstacle(s, "obstacles[" + std::to_string(k) + "]"));
+      o.rigid.push_back(rigid_obstacle(s, "obstacles[" + std::to_string(k) + "]", nc));
   } else {
     o.g = expression(s, "obstacle.g", "0");
     if (spec.physics.model == "oscillator" && o.g.depends_on_time)
@@ -330,6 +340,14 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   v.options.pdas_free_block = s.number("solver.free_block", v.options.pdas_free_block);
   if (!(v.options.pdas_free_block >= 0.0 && v.options.pdas_free_block <= 1.0))
     throw InputError("solver.free_block: a fraction of the unknowns, in [0, 1]");
+  // solver.linear: how pdas solves its reduced systems, a kept Cholesky factor (with
+  // CG while the active set moves) or CG alone (docs/performance.md, 3D)
+  const std::string linear = s.string("solver.linear", "factor");
+  if (linear != "factor" && linear != "cg")
+    throw InputError("solver.linear: expected \"factor\" or \"cg\" (got '" + linear + "')");
+  if (linear == "cg" && v.name != "pdas")
+    throw InputError("solver.linear: the CG path is pdas's (solver.name = " + v.name + ")");
+  v.options.pdas_cg_only = linear == "cg";
   v.threads = s.integer("solver.threads", 0);
   if (v.threads < 0)
     throw InputError("solver.threads: must be 0 (the environment's count, OMP_NUM_THREADS) or a number of threads ≥ 1");
@@ -414,7 +432,7 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec, const
       {"normal", "obstacle.normal"}, {"contact", "obstacle.where"}, {"dt", "time.dt"},
       {"beta", "time.beta"},     {"gamma", "time.gamma"},           {"restitution", "time.restitution"},
       {"scheme", "time.scheme"}, {"tol", "solver.tol"},             {"max_iterations", "solver.max_iterations"},
-      {"solver", "solver.name"}, {"mesh", "mesh.kind"}};
+      {"solver", "solver.name"}, {"mesh", "mesh.kind"},         {"linear", "solver.linear"}};
   if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
   // gmsh parameters of the .geo (meshing/cdyn/gmsh_mesh.hpp)
   if (parameter.rfind("setnumber.", 0) == 0) return "mesh.set." + parameter.substr(10);

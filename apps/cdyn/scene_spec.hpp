@@ -34,6 +34,7 @@ struct SceneSpec {
 
   struct Mesh {
     std::string kind;          // interval | unit_square | unit_cube | gmsh | none (the oscillator)
+    int dim = 0;               // 1, 2, 3 as the kind fixes it; 0 for a gmsh file (known once read)
     int n = 0;                 // cells per side (interval, unit_square, unit_cube)
     double length = 1.0;       // interval
     std::string file;          // gmsh: .geo or .msh, resolved against the scene's directory
@@ -46,8 +47,10 @@ struct SceneSpec {
     double stiffness = 1.0;      // bar: E; membrane: the tension
     Lame lame;                   // elasticity
     double m = 1.0, k = 1.0;     // oscillator
-    std::vector<Expression> f;   // the load: one expression (scalar models) or two
-    Point gravity;               // elasticity: an acceleration, added as ρ g
+    // Elasticity's vectors have one entry per coordinate of the mesh (2 or 3); an
+    // absent one is empty (zero).  simulation.cpp matches them with the mesh.
+    std::vector<Expression> f;   // the load: one expression (scalar models) or a vector
+    std::vector<double> gravity; // elasticity: an acceleration, added as ρ g
     struct Material {            // elasticity: [materials.NAME], NAME a region of the mesh
       std::string name;
       double rho = 1.0;
@@ -63,7 +66,7 @@ struct SceneSpec {
 
   struct Dirichlet {
     std::vector<std::string> parts;   // part names, or "all"
-    std::vector<int> components;      // elasticity: the fixed components (empty: both)
+    std::vector<int> components;      // elasticity: the fixed components (empty: all)
     std::vector<Expression> value;
   } dirichlet;
 
@@ -73,14 +76,14 @@ struct SceneSpec {
   } neumann;
 
   // Elasticity: one rigid obstacle (problems/rigid_obstacle.hpp), a plane through p(t)
-  // with normal n, or a surface given by its gap function φ(x, y, t).
+  // with normal n, or a surface given by its gap function φ(x, y, z, t).
   struct Rigid {
     std::string key;                  // "obstacle" or "obstacles[k]", for messages
     std::string name;
     std::vector<std::string> where;   // Γ_C: part names, or "boundary" (every boundary facet)
-    std::vector<Expression> point;    // p(t), two expressions (plane)
-    Point normal{0.0, 1.0};           // n (plane)
-    std::optional<Expression> gap;    // φ(x, y, t) (a curved obstacle), instead of point/normal
+    std::vector<Expression> point;    // p(t), one expression per coordinate (plane; empty: the origin)
+    std::vector<double> normal;       // n (plane; empty: the default, e_y in the plane, e_z in space)
+    std::optional<Expression> gap;    // φ(x, y, z, t) (a curved obstacle), instead of point/normal
   };
 
   struct Obstacle {
@@ -127,15 +130,10 @@ struct SceneSpec {
   // multiple of dt): printed and listed in summary.json's "warnings".
   std::vector<std::string> warnings;
 
-  int components() const { return physics.model == "elasticity" ? 2 : 1; }
 };
 
 // Reads and checks every key of the scene.  InputError naming the key.
 SceneSpec read_scene(const Scene& scene);
-
-// The refusal of physics.model = elasticity on a 3D mesh (a unit_cube, or a gmsh
-// volume found when the mesh is read).
-extern const std::string kNoElasticityIn3D;
 
 // The scene key that a kernel parameter name comes from ("dt" → "time.dt", "rho" →
 // "physics.rho", "pair" → method.pair or method.mass, ...), for the kernel's

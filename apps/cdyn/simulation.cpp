@@ -67,8 +67,34 @@ ScalarWaveData scalar_wave(const Mesh& mesh, const SceneSpec& s) {
   return d;
 }
 
+// One field per component of a datum: a scalar's one expression, or a vector's one per
+// coordinate of the mesh (absent: zero).  InputError naming the key when a vector has
+// another number of entries than the mesh has coordinates.
+std::vector<Field> fields(const std::vector<Expression>& e, int components) {
+  if (e.empty()) return std::vector<Field>(components, zero_field);
+  if (static_cast<int>(e.size()) != components)
+    throw InputError(e[0].key + ": expected " + std::to_string(components) + " entries, one per coordinate of the " +
+                     std::to_string(components) + "D mesh (got " + std::to_string(e.size()) + ")");
+  std::vector<Field> out;
+  for (const Expression& c : e) out.push_back(c.field);
+  return out;
+}
+
+bool depends_on_time(const std::vector<Expression>& e) {
+  return std::any_of(e.begin(), e.end(), [](const Expression& c) { return c.depends_on_time; });
+}
+
+// A vector of numbers given for a dim-dimensional mesh (empty: `fallback`).
+Point vector_point(const std::vector<double>& c, int dim, const std::string& key, Point fallback) {
+  if (c.empty()) return fallback;
+  if (static_cast<int>(c.size()) != dim)
+    throw InputError(key + ": expected " + std::to_string(dim) + " numbers, one per coordinate of the " +
+                     std::to_string(dim) + "D mesh (got " + std::to_string(c.size()) + ")");
+  return {c[0], c[1], dim == 3 ? c[2] : 0.0};
+}
+
 // A rigid obstacle of the scene: a plane (moving when its point depends on t) or a
-// gap function.
+// gap function.  The default plane is y = 0 in the plane, z = 0 in space, the body above.
 RigidObstacle rigid(const Mesh& mesh, const SceneSpec::Rigid& r) {
   std::vector<int> where;
   if (r.where == std::vector<std::string>{"boundary"}) {
@@ -83,13 +109,15 @@ RigidObstacle rigid(const Mesh& mesh, const SceneSpec::Rigid& r) {
     o.moves = r.gap->depends_on_time;
     o.contact_parts = where;
   } else {
-    const Field px = r.point[0].field, py = r.point[1].field;
+    const int dim = mesh.dim;
+    const std::vector<Field> p = fields(r.point, dim);
+    const Point n = vector_point(r.normal, dim, r.key + ".normal", dim == 3 ? Point{0, 0, 1} : Point{0, 1, 0});
+    auto at = [p, dim](double t) { return Point{p[0](Point{}, t), p[1](Point{}, t), dim == 3 ? p[2](Point{}, t) : 0.0}; };
     try {
-      if (r.point[0].depends_on_time || r.point[1].depends_on_time)
-        o = RigidObstacle::moving_plane([px, py](double t) { return Point{px(Point{}, t), py(Point{}, t)}; },
-                                        r.normal, where);
+      if (depends_on_time(r.point))
+        o = RigidObstacle::moving_plane(at, n, where);
       else
-        o = RigidObstacle::plane({px(Point{}, 0.0), py(Point{}, 0.0)}, r.normal, where);
+        o = RigidObstacle::plane(at(0.0), n, where);
     } catch (const InputError& e) {
       throw InputError(r.key + "." + e.parameter() + ": " + e.message());
     }
@@ -108,12 +136,14 @@ int region(const Mesh& mesh, const std::string& name, const std::string& key) {
                    (known.empty() ? "it has no regions: physical surfaces of a gmsh mesh" : "regions: " + known) + ")");
 }
 
-// Plane-strain elasticity with frictionless contact against a rigid plane
-// (problems/elastic_contact.hpp): the materials (one, or one per named region), the body
-// force f + ρ·gravity, Dirichlet and Neumann parts, Γ_C and the plane.
+// Elasticity in plane strain or in space with frictionless contact against rigid
+// obstacles (problems/elastic_contact.hpp): the materials (one, or one per named region),
+// the body force f + ρ·gravity, Dirichlet and Neumann parts, Γ_C and the obstacles.
+// Every vector has one entry per coordinate of the mesh.
 ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
-  if (mesh.dim == 3) throw InputError(kNoElasticityIn3D);
-  if (mesh.dim != 2) throw InputError("physics.model: elasticity needs a 2D mesh (plane strain)");
+  if (mesh.dim != 2 && mesh.dim != 3)
+    throw InputError("physics.model: elasticity needs a 2D (plane strain) or 3D mesh");
+  const int dim = mesh.dim;
   ElasticContactData d;
   d.mass = s.method.mass;
   d.lambda = s.physics.lame.lambda;
@@ -123,15 +153,20 @@ ElasticContactData elasticity(const Mesh& mesh, const SceneSpec& s) {
     d.region_materials.push_back({region(mesh, m.name, "materials." + m.name), {m.rho, m.lame.lambda, m.lame.mu}});
   // f + ρ g: the body force per unit volume (gravity given as an acceleration; the
   // kernel adds ρ g with the density of each cell).
-  d.f = {s.physics.f[0].field, s.physics.f[1].field};
-  d.gravity = {s.physics.gravity.x, s.physics.gravity.y};
+  auto to = [dim](std::array<Field, 3>& a, const std::vector<Field>& f) {
+    for (int k = 0; k < dim; ++k) a[k] = f[k];
+  };
+  to(d.f, fields(s.physics.f, dim));
+  const Point g = vector_point(s.physics.gravity, dim, "physics.gravity", Point{});
+  d.gravity = {g.x, g.y, g.z};
   d.dirichlet_parts = parts(mesh, s.dirichlet.parts, "dirichlet.parts");
   d.dirichlet_components = s.dirichlet.components;
-  d.dirichlet_value = {s.dirichlet.value[0].field, s.dirichlet.value[1].field};
+  if (dim == 2 && std::find(d.dirichlet_components.begin(), d.dirichlet_components.end(), 2) != d.dirichlet_components.end())
+    throw InputError("dirichlet.components: \"z\" is not a component of a 2D body");
+  to(d.dirichlet_value, fields(s.dirichlet.value, dim));
   d.neumann_parts = parts(mesh, s.neumann.parts, "neumann.parts");
-  d.traction = {s.neumann.traction[0].field, s.neumann.traction[1].field};
-  d.load_is_constant = !(s.physics.f[0].depends_on_time || s.physics.f[1].depends_on_time ||
-                         s.neumann.traction[0].depends_on_time || s.neumann.traction[1].depends_on_time);
+  to(d.traction, fields(s.neumann.traction, dim));
+  d.load_is_constant = !(depends_on_time(s.physics.f) || depends_on_time(s.neumann.traction));
   d.obstacle = s.obstacle.enabled;
   for (const SceneSpec::Rigid& r : s.obstacle.rigid) d.obstacles.push_back(rigid(mesh, r));
   return d;
@@ -153,9 +188,7 @@ std::vector<int> constrained_vertices(const Mesh& mesh, const ConstrainedProblem
 // The unknowns of an initial datum (one expression per component; p.unknowns: the
 // rotated components at the contact nodes of an inclined plane).
 Eigen::VectorXd initial_field(const ConstrainedProblem& p, const std::vector<Expression>& e) {
-  std::vector<Field> f;
-  for (const Expression& c : e) f.push_back(c.field);
-  return p.unknowns(p.W->interpolate(f, 0.0));
+  return p.unknowns(p.W->interpolate(fields(e, p.W->components()), 0.0));
 }
 
 void build_problem(Simulation& sim) {
@@ -179,7 +212,7 @@ void build_problem(Simulation& sim) {
   sim.problem = build_elastic_contact(*sim.mesh, d);
   sim.dirichlet_parts = d.dirichlet_parts;
   sim.dirichlet_components = d.dirichlet_components;
-  sim.components = 2;
+  sim.components = sim.mesh->dim;
   sim.has_obstacle = d.obstacle;
   sim.materials = cell_materials(*sim.mesh, d);
 }
@@ -234,8 +267,17 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.n_steps = s.time.n_steps;
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
-  sim.scheme_name = s.time.scheme == "auto" ? recommended_scheme(p) : s.time.scheme;
+  // (the CG path's solves stop at the QP tolerance, above what the energy-exact
+  // scheme's correction needs: auto takes the midpoint with its full-step
+  // reconstruction then, docs/performance.md)
+  sim.scheme_name = s.time.scheme != "auto" ? s.time.scheme
+                    : s.solver.options.pdas_cg_only ? "midpoint"
+                                                    : recommended_scheme(p);
   sim.solver_name = s.solver.name;
+  // (the step QP of a continuous H^h is in saddle form: no explicit S for CG alone)
+  if (s.solver.options.pdas_cg_only && !p.mass->matrix())
+    throw InputError("solver.linear: the CG path needs an explicit step matrix; with " + sim.pair +
+                     " the step is in saddle form (H^h continuous), solved by UMFPACK: use solver.linear = \"factor\"");
   sim.tol = s.solver.options.tol;
   with_scene_keys(s, [&] {
     sim.solver = make_step_solver(sim.solver_name, s.solver.options);

@@ -99,9 +99,9 @@ ErrorMeasure error_measure(const std::string& text, const SceneSpec& spec) {
   const std::string column = colon == std::string::npos ? "u" : rest.substr(colon + 1);
   if (std::find(probes.begin(), probes.end(), m.probe) == probes.end())
     throw InputError("--error " + text + ": no probe '" + m.probe + "' in output.probes (" + joined(probes) + ")");
-  const bool vector = spec.components() == 2;
+  const bool vector = spec.physics.model == "elasticity";
   const std::vector<std::string> allowed =
-      vector ? std::vector<std::string>{"u", "v", "ux", "uy", "vx", "vy", "lambda"}
+      vector ? std::vector<std::string>{"u", "v", "ux", "uy", "uz", "vx", "vy", "vz", "lambda"}
              : std::vector<std::string>{"u", "v", "lambda"};
   if (std::find(allowed.begin(), allowed.end(), column) == allowed.end())
     throw InputError("--error " + text + ": no column '" + column + "' (" + joined(allowed) + ")");
@@ -128,6 +128,12 @@ void read_history(const std::string& history_csv, const ErrorMeasure& m, RunReco
   const std::size_t it = index("t");
   std::vector<std::size_t> ic;
   for (const std::string& c : m.columns) ic.push_back(index(c));
+  // u or v of a body in space: (ux, uy) and uz, which only the history's header tells
+  if (m.columns.size() == 2) {
+    const std::string z = m.columns[0].substr(0, 1) + "z" + m.columns[0].substr(2);
+    if (const auto at = std::find(names.begin(), names.end(), z); at != names.end())
+      ic.push_back(static_cast<std::size_t>(at - names.begin()));
+  }
   r.t.clear();
   r.c.assign(ic.size(), {});
   std::vector<std::string> values;

@@ -20,7 +20,7 @@ WellPosednessSetup wellposedness_setup(const Simulation& sim) {
   setup.dirichlet_parts = sim.dirichlet_parts;
   setup.constrained_vertices = sim.constrained_vertices;
   setup.components = sim.components;
-  if (sim.components == 2) {  // the normal of the obstacle at each constrained vertex
+  if (sim.components > 1) {  // the normal of the obstacle at each constrained vertex
     for (int v : setup.constrained_vertices)
       for (const auto& c : sim.problem.contact_nodes)
         if (c.vertex == v) setup.normals.push_back(c.normal);

@@ -604,3 +604,39 @@ TEST(QPSolvers, NonConvergenceIsReportedWithResidualAndIterations) {
 }
 
 }  // namespace
+
+TEST(QPSolvers, PdasCgPathNeverFactorizesAndFindsTheFactorsSolution) {
+  // QPOptions::pdas_cg_only: every reduced system by masked CG, no analysis and no
+  // factorization, for a cold solve and a warm-started one (a time loop's next step,
+  // with r moved).  The same active set as the factor path, and X within the error
+  // bounds of the two results (each meets tol = 1e-10 on the natural residual).
+  for (bool mass : {false, true}) {
+    BoundQP qp = random_problem(30, 30, 23, mass);
+    QPOptions cg;
+    cg.pdas_cg_only = true;
+    cdyn::PDASSolver by_factor, by_cg(cg);
+    QPResult rf = by_factor.solve(qp), rc = by_cg.solve(qp);
+    for (int step = 0; step < 2; ++step) {
+      const ErrorBound bound(qp);
+      expect_kkt(qp, rc, 1e-10, "pdas (CG path)");
+      EXPECT_EQ(rc.active, rf.active) << "mass " << mass << " step " << step;
+      EXPECT_LE((rc.X - rf.X).lpNorm<Eigen::Infinity>(), bound(qp, rf) + bound(qp, rc)) << "mass " << mass;
+      qp.r *= 1.1;  // the next "step"
+      rf = by_factor.solve(qp, &rf);
+      rc = by_cg.solve(qp, &rc);
+    }
+    EXPECT_EQ(by_cg.counters().factorizations, 0);
+    EXPECT_EQ(by_cg.counters().analyses, 0);
+    EXPECT_GT(by_cg.counters().cg_solves, 0);
+  }
+  // the saddle form has no explicit S to run CG on: refused, naming the option
+  QPOptions cg;
+  cg.pdas_cg_only = true;
+  const SaddleCase sc = saddle_case(20, 12, 5);
+  try {
+    cdyn::PDASSolver(cg).solve(sc.saddle_qp);
+    ADD_FAILURE() << "the CG path accepted a saddle-form QP";
+  } catch (const cdyn::InputError& e) {
+    EXPECT_EQ(e.parameter(), "linear");
+  }
+}

@@ -32,18 +32,18 @@ Mesh disk(double lc) { return read_mesh(std::string(CDYN_SOURCE_DIR) + "/data/ge
 constexpr double g00 = 0.3, g01 = -0.7, g10 = 0.2, g11 = -0.45;
 const std::vector<Field> affine = {[](double x, double y, double) { return 0.1 + g00 * x + g01 * y; },
                                    [](double x, double y, double) { return -0.2 + g10 * x + g11 * y; }};
-const PlaneStrainTensor exact_epsilon{g00, g11, 0.0, 0.5 * (g01 + g10)};
+const SymmetricTensor exact_epsilon{g00, g11, 0.0, 0.5 * (g01 + g10)};
 
 // σ_vM as (3/2 s:s)^½ with s the deviator of the full 3 × 3 tensor: an independent
 // form of the formula post/stress.hpp uses.
-double von_mises_from_deviator(const PlaneStrainTensor& t) {
+double von_mises_from_deviator(const SymmetricTensor& t) {
   Eigen::Matrix3d s;
   s << t.xx, t.xy, 0.0, t.xy, t.yy, 0.0, 0.0, 0.0, t.zz;
   const Eigen::Matrix3d dev = s - s.trace() / 3.0 * Eigen::Matrix3d::Identity();
   return std::sqrt(1.5 * (dev.array() * dev.array()).sum());
 }
 
-void expect_tensor(const PlaneStrainTensor& a, const PlaneStrainTensor& b, double scale, const std::string& what) {
+void expect_tensor(const SymmetricTensor& a, const SymmetricTensor& b, double scale, const std::string& what) {
   const double tol = 1e-13 * scale;
   EXPECT_NEAR(a.xx, b.xx, tol) << what;
   EXPECT_NEAR(a.yy, b.yy, tol) << what;
@@ -55,7 +55,7 @@ void expect_tensor(const PlaneStrainTensor& a, const PlaneStrainTensor& b, doubl
 
 TEST(Stress, PlaneStrainLawAndVonMises) {
   const double lambda = 1.7, mu = 0.6;
-  const PlaneStrainTensor s = plane_strain_stress(exact_epsilon, lambda, mu);
+  const SymmetricTensor s = isotropic_stress(exact_epsilon, lambda, mu);
   const double tr = g00 + g11;
   EXPECT_DOUBLE_EQ(s.xx, lambda * tr + 2 * mu * g00);
   EXPECT_DOUBLE_EQ(s.yy, lambda * tr + 2 * mu * g11);
@@ -88,7 +88,7 @@ TEST(Stress, AffineDisplacementGivesTheExactStressInEveryCell) {
       ASSERT_EQ(static_cast<int>(cells.size()), mesh.n_cells());
       for (int c = 0; c < mesh.n_cells(); ++c) {
         const double l = uniform ? 2.0 : lambda[c], m = uniform ? 0.5 : mu[c];
-        const PlaneStrainTensor sigma = plane_strain_stress(exact_epsilon, l, m);
+        const SymmetricTensor sigma = isotropic_stress(exact_epsilon, l, m);
         const std::string what = to_string(e) + (uniform ? " uniform" : " two materials") + ", cell " + std::to_string(c);
         expect_tensor(cells[c].epsilon, exact_epsilon, 1.0, what);
         expect_tensor(cells[c].sigma, sigma, l + 2 * m, what);
@@ -98,7 +98,7 @@ TEST(Stress, AffineDisplacementGivesTheExactStressInEveryCell) {
       // The vertex average of a constant is the constant.
       const std::vector<StressState> at = vertex_stress(mesh, cells);
       ASSERT_EQ(static_cast<int>(at.size()), mesh.n_vertices());
-      const PlaneStrainTensor sigma = plane_strain_stress(exact_epsilon, 2.0, 0.5);
+      const SymmetricTensor sigma = isotropic_stress(exact_epsilon, 2.0, 0.5);
       for (int v = 0; v < mesh.n_vertices(); ++v) {
         expect_tensor(at[v].epsilon, exact_epsilon, 1.0, to_string(e) + " vertex " + std::to_string(v));
         expect_tensor(at[v].sigma, sigma, 3.0, to_string(e) + " vertex " + std::to_string(v));

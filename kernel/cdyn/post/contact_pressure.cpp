@@ -30,25 +30,41 @@ ContactPressure::ContactPressure(const ConstrainedProblem& p) : p_(p) {
   const Mesh& mesh = p.W->mesh();
   std::map<int, int> node_of;
   for (int k = 0; k < static_cast<int>(p.contact_nodes.size()); ++k) node_of[p.contact_nodes[k].vertex] = k;
-  // w(a): half of each Γ_C edge to each of its two vertices (the edges of the parts of
-  // the vertex's obstacle).
+  // w(a): the share ∫_F φ_a = |F|/d of each Γ_C facet F (an edge, d = 2, or a triangle,
+  // d = 3) to each of its vertices (the facets of the parts of the vertex's obstacle).
+  const int d = mesh.dim;
   std::map<int, double> weight;
   for (const BoundaryFacet& f : mesh.boundary) {
-    const auto a = node_of.find(f.vertices[0]), b = node_of.find(f.vertices[1]);
-    if (a == node_of.end() || b == node_of.end()) continue;
-    const std::vector<int>& parts = p.obstacles[p.contact_nodes[a->second].obstacle].contact_parts;
+    bool all = true;
+    for (int k = 0; k < d; ++k) all = all && node_of.count(f.vertices[k]) > 0;
+    if (!all) continue;
+    const std::vector<int>& parts = p.obstacles[p.contact_nodes[node_of.at(f.vertices[0])].obstacle].contact_parts;
     if (std::find(parts.begin(), parts.end(), f.part) == parts.end()) continue;
     const Point &pa = mesh.vertices[f.vertices[0]], &pb = mesh.vertices[f.vertices[1]];
-    const double half = 0.5 * std::hypot(pb.x - pa.x, pb.y - pa.y);
-    weight[f.vertices[0]] += half;
-    weight[f.vertices[1]] += half;
+    double share = 0.0;
+    if (d == 2) {
+      share = 0.5 * std::hypot(pb.x - pa.x, pb.y - pa.y);
+    } else {
+      const Point& pc = mesh.vertices[f.vertices[2]];
+      const double u[3] = {pb.x - pa.x, pb.y - pa.y, pb.z - pa.z}, w[3] = {pc.x - pa.x, pc.y - pa.y, pc.z - pa.z};
+      const double area = 0.5 * std::hypot(u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]);
+      share = area / 3.0;
+    }
+    for (int k = 0; k < d; ++k) weight[f.vertices[k]] += share;
   }
   for (const auto& [v, w] : weight) {
     if (!is_constrained_vertex(p, v)) continue;
     const ConstrainedProblem::ContactNode& c = p.contact_nodes[node_of.at(v)];
     const Point& a = mesh.vertices[v];
     const Point& o = p.obstacles[c.obstacle].origin;
-    vertices_.push_back({v, -(a.x - o.x) * c.normal.y + (a.y - o.y) * c.normal.x, w, node_of.at(v)});
+    const Point& n = c.normal;
+    double s = -(a.x - o.x) * n.y + (a.y - o.y) * n.x;
+    if (d == 3) {  // the distance from the origin along the obstacle: |(a − o) − ((a − o)·n) n|
+      const double r[3] = {a.x - o.x, a.y - o.y, a.z - o.z};
+      const double rn = r[0] * n.x + r[1] * n.y + r[2] * n.z;
+      s = std::hypot(r[0] - rn * n.x, r[1] - rn * n.y, r[2] - rn * n.z);
+    }
+    vertices_.push_back({v, s, w, node_of.at(v)});
   }
   std::sort(vertices_.begin(), vertices_.end(), [this](const Vertex& a, const Vertex& b) {
     const int oa = p_.contact_nodes[a.node].obstacle, ob = p_.contact_nodes[b.node].obstacle;

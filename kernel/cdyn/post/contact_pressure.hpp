@@ -6,9 +6,9 @@
 // step's reaction at a in (x, y) (post/contact_force.hpp) and n(a) the obstacle's unit
 // outward normal there: a nodal force, the weak form's integral of the contact pressure
 // against the vertex's hat function.  The pressure is p(a) = F_N(a) / w(a),
-// w(a) = ∫_{Γ_C} φ_a ds the vertex's share of Γ_C (half the length of its contact edges:
-// the P1 hat function on the boundary, whatever W^h is, since the constraint is nodal at
-// the vertices), so that Σ_a F_N(a) = Σ_a p(a) w(a) is the total contact force.  The gap
+// w(a) = ∫_{Γ_C} φ_a ds the vertex's share of Γ_C (half the length of its contact edges,
+// a third of the area of its contact triangles in space: the P1 hat function on the
+// boundary, whatever W^h is, since the constraint is nodal at the vertices), so that Σ_a F_N(a) = Σ_a p(a) w(a) is the total contact force.  The gap
 // is the distance φ(a + u(a), t)/|∇φ(a, 0)| to the obstacle, negative where the body
 // penetrates it ((a + u(a) − p)·n for a plane).
 #pragma once
@@ -24,7 +24,8 @@ class ContactPressure {
  public:
   struct Vertex {
     int vertex;
-    double s;       // coordinate along the obstacle, (a − p)·t, t = (−n_y, n_x), p its origin
+    double s;       // coordinate along the obstacle, (a − p)·t, t = (−n_y, n_x), p its origin;
+                    // in space the distance |(a − p) − ((a − p)·n) n| from p along it
     double weight;  // w(a) = ∫_{Γ_C} φ_a ds
     int node;       // into ConstrainedProblem::contact_nodes
   };

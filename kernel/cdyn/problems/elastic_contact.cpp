@@ -15,16 +15,20 @@ namespace cdyn {
 namespace {
 
 Point unit(const Point& n) {
-  const double norm = std::hypot(n.x, n.y);
+  // (the two-argument hypot in the plane, bit-compatible with the 2D formulas)
+  const double norm = n.z == 0.0 ? std::hypot(n.x, n.y) : std::hypot(n.x, n.y, n.z);
   if (!(norm > 0.0) || !std::isfinite(norm)) throw InputError("normal", "must be a nonzero finite vector");
-  return {n.x / norm, n.y / norm};
+  return {n.x / norm, n.y / norm, n.z / norm};
 }
 
-// `where` is "" for the body's material, else " (region 'name')".
-void check_material(const Material& m, const std::string& where) {
+// `where` is "" for the body's material, else " (region 'name')"; dim the mesh's.
+void check_material(const Material& m, const std::string& where, int dim) {
   if (!(m.rho > 0.0) || !std::isfinite(m.rho)) throw InputError("rho", "must be positive" + where);
   if (!(m.mu > 0.0) || !std::isfinite(m.mu)) throw InputError("mu", "the shear modulus must be positive" + where);
-  if (!(m.lambda + m.mu > 0.0) || !std::isfinite(m.lambda))
+  if (!std::isfinite(m.lambda)) throw InputError("lambda", "must be finite" + where);
+  if (dim == 3 && !(3.0 * m.lambda + 2.0 * m.mu > 0.0))
+    throw InputError("lambda", "elasticity in space needs 3λ + 2μ > 0 (got λ = " + std::to_string(m.lambda) + ")" + where);
+  if (dim != 3 && !(m.lambda + m.mu > 0.0))
     throw InputError("lambda", "plane strain needs λ + μ > 0 (got λ = " + std::to_string(m.lambda) + ")" + where);
 }
 
@@ -45,12 +49,57 @@ struct ContactSet {
   NodalRotation rotation;                             // nodes whose unknowns become (n·u, t·u)
   std::vector<Bound> bounds;
   std::vector<ConstrainedProblem::ContactNode> nodes; // every contact vertex
-  std::vector<int> contact_dofs;                      // both free components of every contact vertex
+  std::vector<int> contact_dofs;                      // every free component of every contact vertex
 };
 
 double node_gap(const std::vector<RigidObstacle>& obstacles, const Point& a,
                 const ConstrainedProblem::ContactNode& c, double t) {
   return -obstacles[c.obstacle].gap(a, t) / c.scale;
+}
+
+// The bound of one contact vertex with normal n and free unknowns i[k] ≥ 0 (k < dim):
+// m·u_F ≥ g − Σ_fixed n_j u_D,j, m = n on the free components F.
+void constrain_vertex(int v, int node, const Point& n, const std::array<int, 3>& i, int dim, const FESpace& W,
+                      const Eigen::VectorXd& UD, bool rotate_always, ContactSet& s) {
+  const double nk[3] = {n.x, n.y, n.z};
+  std::vector<int> free, along;  // free components; those n has a part along
+  double offset = 0.0;
+  for (int k = 0; k < dim; ++k) {
+    if (i[k] < 0) {
+      offset += -nk[k] * UD[W.vertex_dof(v, k)];
+      continue;
+    }
+    free.push_back(k);
+    if (nk[k] != 0.0) along.push_back(k);
+  }
+  const bool all_free = static_cast<int>(free.size()) == dim;
+  if (along.empty()) return;  // the constraint does not involve a free unknown
+  if (along.size() == 1 && !(all_free && rotate_always)) {
+    // n_k u_k ≥ g − Σ_fixed n_j u_D,j bounds u_k (n = ±e_k when every component is free).
+    const int k = along[0];
+    if (all_free)
+      s.bounds.push_back({i[k], node, nk[k] > 0 ? 1.0 : -1.0, 0.0, nk[k] > 0});
+    else
+      s.bounds.push_back({i[k], node, 1.0 / nk[k], offset / nk[k], nk[k] > 0});
+    return;
+  }
+  if (all_free) {
+    // The unknowns i become (n·u, t·u) or (n·u, t₁·u, t₂·u): n·u ≥ g bounds the first.
+    NodalRotation::Node r{i[0], i[1], n.x, n.y};
+    if (dim == 3) {
+      r.iz = i[2];
+      r.nz = n.z;
+    }
+    s.rotation.nodes.push_back(r);
+    s.bounds.push_back({i[0], node, 1.0, 0.0, true});
+    return;
+  }
+  // Two free components of three, n with a part along both: rotate them to m/|m| and
+  // bound (m/|m|)·u_F ≥ (g + offset)/|m|.
+  const int a = free[0], b = free[1];
+  const double m = std::hypot(nk[a], nk[b]);
+  s.rotation.nodes.push_back({i[a], i[b], nk[a] / m, nk[b] / m});
+  s.bounds.push_back({i[a], node, 1.0 / m, offset / m, true});
 }
 
 ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& bc, const Eigen::VectorXd& UD,
@@ -68,32 +117,16 @@ ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& 
         node_of[v] = c;  // (a larger g: the obstacle is nearer)
     }
   ContactSet s;
+  const int dim = mesh.dim;
   for (const auto& [v, c] : node_of) {
     const int node = static_cast<int>(s.nodes.size());
     s.nodes.push_back(c);
-    const Point n = c.normal;
-    const double nk[2] = {n.x, n.y};
-    const bool axis_aligned = n.x == 0.0 || n.y == 0.0;
-    const int i[2] = {bc.free_index(W.vertex_dof(v, 0)), bc.free_index(W.vertex_dof(v, 1))};
-    for (int k : {0, 1})
+    std::array<int, 3> i{-1, -1, -1};
+    for (int k = 0; k < dim; ++k) {
+      i[k] = bc.free_index(W.vertex_dof(v, k));
       if (i[k] >= 0) s.contact_dofs.push_back(i[k]);
-    if (i[0] >= 0 && i[1] >= 0) {
-      if (!axis_aligned || rotate_always) {
-        // Unknown i[0] becomes n·u (and i[1] t·u): n·u ≥ g is a lower bound on it.
-        s.rotation.nodes.push_back({i[0], i[1], n.x, n.y});
-        s.bounds.push_back({i[0], node, 1.0, 0.0, true});
-      } else {
-        // n = ±e_k: ±u_k ≥ g.
-        const int k = n.x != 0.0 ? 0 : 1;
-        s.bounds.push_back({i[k], node, nk[k] > 0 ? 1.0 : -1.0, 0.0, nk[k] > 0});
-      }
-    } else if (i[0] >= 0 || i[1] >= 0) {
-      // A roller: u_j = u_D,j is data, n_k u_k ≥ g − n_j u_D,j bounds the free u_k.
-      const int k = i[0] >= 0 ? 0 : 1, j = 1 - k;
-      if (nk[k] == 0.0) continue;  // the constraint does not involve the free unknown
-      s.bounds.push_back({i[k], node, 1.0 / nk[k], -nk[j] * UD[W.vertex_dof(v, j)] / nk[k], nk[k] > 0});
     }
-    // Both components fixed: a Dirichlet vertex is not constrained.
+    constrain_vertex(v, node, c.normal, i, dim, W, UD, rotate_always, s);
   }
   return s;
 }
@@ -120,7 +153,7 @@ Lame lame_parameters(double E, double nu) {
 
 CellMaterials cell_materials(const Mesh& mesh, const ElasticContactData& d) {
   const Material body{d.rho, d.lambda, d.mu};
-  check_material(body, "");
+  check_material(body, "", mesh.dim);
   if (d.region_materials.empty()) return {d.rho, d.lambda, d.mu};
   const int n_regions = static_cast<int>(mesh.region_names.size());
   std::vector<const Material*> of_region(n_regions, nullptr);
@@ -129,7 +162,7 @@ CellMaterials cell_materials(const Mesh& mesh, const ElasticContactData& d) {
       throw InputError("regions", "region " + std::to_string(r) + " is not a region of the mesh (it has " +
                                       std::to_string(n_regions) + ")");
     if (of_region[r]) throw InputError("regions", "region '" + mesh.region_names[r] + "' is given two materials");
-    check_material(m, " (region '" + mesh.region_names[r] + "')");
+    check_material(m, " (region '" + mesh.region_names[r] + "')", mesh.dim);
     of_region[r] = &m;
   }
   std::vector<double> rho(mesh.n_cells()), lambda(mesh.n_cells()), mu(mesh.n_cells());
@@ -145,7 +178,7 @@ CellMaterials cell_materials(const Mesh& mesh, const ElasticContactData& d) {
 
 double obstacle_gap(const ElasticContactData& d, const Point& a) {
   const Point n = unit(d.obstacle_normal);
-  return -((a.x - d.obstacle_point.x) * n.x + (a.y - d.obstacle_point.y) * n.y);
+  return -((a.x - d.obstacle_point.x) * n.x + (a.y - d.obstacle_point.y) * n.y + (a.z - d.obstacle_point.z) * n.z);
 }
 
 std::vector<RigidObstacle> obstacles_of(const ElasticContactData& d) {
@@ -155,34 +188,36 @@ std::vector<RigidObstacle> obstacles_of(const ElasticContactData& d) {
 }
 
 ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& d) {
-  if (mesh.dim != 2) throw InputError("mesh", "plane-strain elasticity needs a 2D mesh");
+  if (mesh.dim != 2 && mesh.dim != 3) throw InputError("mesh", "elasticity needs a 2D (plane strain) or 3D mesh");
+  const int dim = mesh.dim;
   const CellMaterials material = cell_materials(mesh, d);
   const std::vector<RigidObstacle> obstacles = obstacles_of(d);
   if (d.obstacle && obstacles.empty()) throw InputError("contact", "elasticity with an obstacle needs a contact part Γ_C");
   for (const RigidObstacle& o : obstacles)
     if (o.contact_parts.empty()) throw InputError("contact", o.name + ": no contact part Γ_C");
   ConstrainedProblem p;
-  p.W = std::make_unique<FESpace>(mesh, d.mass.W, 2);
+  p.W = std::make_unique<FESpace>(mesh, d.mass.W, dim);
   const FESpace& W = *p.W;
   p.bc = std::make_unique<DirichletLift>(W, d.dirichlet_parts, d.dirichlet_components);
   p.A_full = assemble_elasticity(W, material.lambda, material.mu);
 
   // L(t) = ∫_Ω (f + ρ g)·φ_i + ∫_{Γ_N} g_N·φ_i.  One density: ρ g is added to f at the
   // quadrature points; several: ∫ ρ g·φ_i is a load of its own, weighted cell by cell.
-  std::vector<Field> f(d.f.begin(), d.f.end());
-  const std::vector<Field> gN(d.traction.begin(), d.traction.end());
+  std::vector<Field> f(d.f.begin(), d.f.begin() + dim);
+  const std::vector<Field> gN(d.traction.begin(), d.traction.begin() + dim);
   const std::vector<int> neumann = d.neumann_parts;
-  const std::array<double, 2> g = d.gravity;
+  const std::vector<double> g(d.gravity.begin(), d.gravity.begin() + dim);
   const CellCoefficient rho = material.rho;
   if (rho.is_uniform())
-    for (int k : {0, 1})
+    for (int k = 0; k < dim; ++k)
       f[k] = [fk = f[k], rho_g = rho.value() * g[k]](const Point& x, double t) { return fk(x, t) + rho_g; };
-  const bool weighted_gravity = !rho.is_uniform() && (g[0] != 0.0 || g[1] != 0.0);
+  bool weighted_gravity = false;
+  for (double gk : g) weighted_gravity = weighted_gravity || (!rho.is_uniform() && gk != 0.0);
   p.L_full = [&W, f, gN, neumann, g, rho, weighted_gravity](double t) {
     Eigen::VectorXd L = assemble_load(W, f, t);
     if (weighted_gravity) {
-      const std::vector<Field> gk{[g0 = g[0]](const Point&, double) { return g0; },
-                                  [g1 = g[1]](const Point&, double) { return g1; }};
+      std::vector<Field> gk;
+      for (double value : g) gk.push_back([value](const Point&, double) { return value; });
       L += assemble_load(W, rho, gk, t);
     }
     if (!neumann.empty()) L += assemble_boundary_load(W, neumann, gN, t);
@@ -191,7 +226,7 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   p.load_is_constant = d.load_is_constant;
   p.UD = d.dirichlet_parts.empty()
              ? Eigen::VectorXd::Zero(W.n_dofs())
-             : p.bc->lifting(W, std::vector<Field>(d.dirichlet_value.begin(), d.dirichlet_value.end()));
+             : p.bc->lifting(W, std::vector<Field>(d.dirichlet_value.begin(), d.dirichlet_value.begin() + dim));
   const SparseMatrix A_ff = p.bc->restrict(p.A_full);
 
   // K̄^h.  The contact set (and the rotation) is built even when the obstacle is
@@ -214,7 +249,7 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
       };
   }
 
-  // Redistributed mass: both components of each contact node are massless, so every
+  // Redistributed mass: every component of each contact node is massless, so every
   // normal N_i is in Ker M whatever its direction (mass/mass_model.hpp).
   std::unique_ptr<MassModel> mass = make_mass_model(W, *p.bc, d.mass, material.rho, contact.contact_dofs);
 

@@ -1,5 +1,6 @@
 // problems/elastic_contact.hpp — the elastodynamic Signorini problem of the seed (eqs. 1–6) in
-// plane strain, as a ConstrainedProblem (problems/constrained_problem.hpp):
+// plane strain (a 2D mesh) or in space (a tetrahedral mesh), as a ConstrainedProblem
+// (problems/constrained_problem.hpp):
 //
 //     ρ ü − div σ(u) = f  in Ω,     σ(u) = λ tr ε(u) I + 2μ ε(u)       (1), (2)
 //     σ(u) ν = g_N on Γ_N,   u = u_D on Γ_D,   u(0) = u₀, u̇(0) = u₁     (3)–(5)
@@ -30,13 +31,15 @@
 // ν = −n on Γ_C this is the seed's u_N = u·ν ≤ −g (eq. 6), and its multiplier λ_N ≤ 0
 // is minus the QP reaction on the normal unknown: the contact pressure −λ_N ≥ 0.
 //
-// The constraint acts on the two vertex dofs of each vertex of Γ_C (never on bubbles
-// or edge dofs).  For a normal along an axis the bound falls on u_x or u_y itself;
-// otherwise the problem carries the node-local rotation R (problems/nodal_rotation.hpp) and its
-// unknowns at the contact nodes are (n·u, t·u), t = (−n_y, n_x).  A vertex whose two
-// components are fixed by Dirichlet conditions is not constrained; one with a single
-// fixed component (a roller) gets the bound on its free component when n has a part
-// along it.
+// The constraint acts on the vertex dofs of each vertex of Γ_C (never on bubbles or
+// edge dofs).  For a normal along an axis the bound falls on u_x, u_y or u_z itself;
+// otherwise the problem carries the node-local rotation R (problems/nodal_rotation.hpp)
+// and its unknowns at the contact nodes are (n·u, t·u), t = (−n_y, n_x), in the plane
+// and (n·u, t₁·u, t₂·u) in space.  A vertex whose components are all fixed by Dirichlet
+// conditions is not constrained; one with some fixed components (a roller) gets the
+// bound m·u_F ≥ g − Σ_fixed n_j u_D,j on its free components F (m the part of n along
+// them): on the one free component n has a part along, or on the normal component of
+// the free ones, rotated.
 #pragma once
 
 #include <array>
@@ -54,7 +57,7 @@ namespace cdyn {
 // The zero field, the default of every datum below.
 inline double zero_field(double, double, double) { return 0.0; }
 
-// An isotropic linear elastic material: density and Lamé parameters (plane strain).
+// An isotropic linear elastic material: density and Lamé parameters.
 struct Material {
   double rho = 1.0;
   double lambda = 1.0, mu = 1.0;
@@ -67,16 +70,18 @@ struct ElasticContactData {
   // Materials by region: (index into mesh.region_names, its material).  The cells of the
   // regions not listed, and every cell of a mesh without regions, take rho, lambda, mu.
   std::vector<std::pair<int, Material>> region_materials;
-  std::array<Field, 2> f{zero_field, zero_field};   // body force (f_x, f_y)(x, y, t)
-  std::array<double, 2> gravity{0.0, 0.0};          // an acceleration g: ρ g is added to f, ρ of each cell
+  // Vectors have one entry per coordinate; the first mesh.dim are used (a 2D body
+  // ignores the z entries).
+  std::array<Field, 3> f{zero_field, zero_field, zero_field};  // body force (f_x, f_y, f_z)(x, y, z, t)
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};     // an acceleration g: ρ g is added to f, ρ of each cell
   bool load_is_constant = true;    // neither f nor the traction depends on t
 
   std::vector<int> dirichlet_parts;                // Γ_D (indices into mesh.part_names)
-  std::vector<int> dirichlet_components;           // the fixed components; empty: both
-  std::array<Field, 2> dirichlet_value{zero_field, zero_field};  // u_D, constant in time
+  std::vector<int> dirichlet_components;           // the fixed components; empty: all
+  std::array<Field, 3> dirichlet_value{zero_field, zero_field, zero_field};  // u_D, constant in time
 
   std::vector<int> neumann_parts;                  // Γ_N (free parts with a traction)
-  std::array<Field, 2> traction{zero_field, zero_field};  // g_N = σ ν on Γ_N
+  std::array<Field, 3> traction{zero_field, zero_field, zero_field};  // g_N = σ ν on Γ_N
 
   // The obstacles.  Empty: the single plane through obstacle_point with normal
   // obstacle_normal, touched by contact_parts (the shorthand of the first scenes).
@@ -101,7 +106,8 @@ Lame lame_parameters(double E, double nu);
 // when every cell has the same material (fe/cell_coefficient.hpp).  InputError for a
 // region index the mesh does not have, a region listed twice, or a material with
 // ρ ≤ 0, μ ≤ 0 or λ + μ ≤ 0 (parameters "rho", "mu", "lambda"; the message names the
-// region).
+// region).  In the plane the ellipticity of plane strain asks λ + μ > 0, in space
+// 3λ + 2μ > 0 (a positive bulk modulus).
 struct CellMaterials {
   CellCoefficient rho, lambda, mu;
 };
@@ -113,9 +119,9 @@ double obstacle_gap(const ElasticContactData& data, const Point& a);
 // The obstacles of the data: `obstacles`, or the single plane when it is empty.
 std::vector<RigidObstacle> obstacles_of(const ElasticContactData& data);
 
-// Throws InputError for ρ ≤ 0, μ ≤ 0, λ + μ ≤ 0 (plane-strain ellipticity), a zero
-// normal, a non-2D mesh, an obstacle with no contact part, or a gap function without a
-// gradient at a contact vertex.
+// Throws InputError for ρ ≤ 0, μ ≤ 0, λ + μ ≤ 0 (3λ + 2μ ≤ 0 in space), a zero normal,
+// a 1D mesh, an obstacle with no contact part, or a gap function without a gradient at
+// a contact vertex.
 ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactData& data);
 
 }  // namespace cdyn

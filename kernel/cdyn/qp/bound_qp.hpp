@@ -65,6 +65,12 @@ struct QPOptions {
   // fill-reducing ordering, instead of S̃ in S's pattern (whose fill does not shrink with
   // the free set); 0: never.  Resting contact, most unknowns on the obstacle.
   double pdas_free_block = 0.5;
+  // pdas, explicit S: never factorize; every reduced system S̃ by the masked CG above, at
+  // most max(pdas_cg_iterations, 2000) iterations a solve (NumericalError beyond).  The
+  // path for large 3D problems, whose Cholesky factor fills far more than in 2D while
+  // the step matrix stays well conditioned when dt ∝ h (docs/performance.md).  Not for
+  // the saddle form (P1+/P1, P2/P1), which is always solved by UMFPACK: InputError.
+  bool pdas_cg_only = false;
   double pgs_omega = 1.0;      // pgs: over-relaxation factor, 0 < ω < 2
   int pgs_check_every = 10;    // pgs: sweeps between two evaluations of the KKT residual
   bool ipopt_crossover = true;  // ipopt: finish by PDAS steps from Ipopt's active set if above tol

@@ -28,7 +28,8 @@
 // S = 4Mc² + A — the one the solver has factorized — instead of a new S per β; the lag
 // contracts by |β|/(2c²) per iteration (measured on the membrane: |β| ≤ 460 against
 // 2c² = 2e6), and the iteration stops when ΔH is below energy_tol times the energy
-// size of its terms (its round-off floor) and X has stopped moving (to the QP tolerance).
+// size of its terms (its round-off floor) and the lag would move X by less than the QP
+// tolerance.
 //
 // When the correction asks for |β| ≥ c² (a large dt against a stiff switch: the seed's
 // membrane at n = 10, dt = 0.01 asks β = −4.8e4 against 2c² = 2e4, where the corrected
@@ -117,7 +118,9 @@ class DiscreteGradient final : public StepQPScheme {
     if (try_step(s, h, stats)) return;
     if (depth >= kMaxHalvings)
       throw NumericalError("discrete_gradient: the energy correction did not converge even with steps of dt/" +
-                           std::to_string(1 << kMaxHalvings) + " at t = " + to_text(s.t) + ": reduce time.dt");
+                           std::to_string(1 << kMaxHalvings) + " at t = " + to_text(s.t) +
+                           ": reduce time.dt (with step solves by CG alone, which stop at the QP tolerance, the "
+                           "energy may not reach time.energy_tol: raise it, or solve with the factor)");
     ++stats.substeps;
     advance(s, 0.5 * h, depth + 1, stats);
     advance(s, 0.5 * h, depth + 1, stats);
@@ -179,9 +182,15 @@ class DiscreteGradient final : public StepQPScheme {
       return it;
     };
     auto small_energy = [&](const Iterate& it) { return std::abs(it.dH) <= energy_tol_ * it.terms; };
+    // The lag is resolved when one more iteration would move X by less than the QP
+    // tolerance: the lag contracts by |β|/(2c²) (S = 4c²M + A against the correction
+    // 2βM), so the next move is at most that times the last one.  (Asking the last move
+    // itself to be below the tolerance fails when the step solves are inexact to their
+    // tolerance — pdas's CG while the active set moves, or the CG path — whose noise in X
+    // does not contract.)
     auto settled = [&](const Iterate& it, const Iterate& prev) {
       const double scale = std::max(it.X.lpNorm<Eigen::Infinity>(), 1e-300);
-      return (it.X - prev.X).lpNorm<Eigen::Infinity>() <= tol_ * scale;
+      return std::abs(it.beta) / (2 * c * c) * (it.X - prev.X).lpNorm<Eigen::Infinity>() <= tol_ * scale;
     };
 
     Iterate a = iterate(0.0, nullptr);

@@ -41,11 +41,22 @@ ExplicitReducedSystem::ExplicitReducedSystem(const QPOptions& options, PDASCount
 void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   n_ = qp.size();
   ++calls_;
-  if (!new_matrices && chol_.factorized()) return;
-  if (same_matrix(qp.S, S_) && chol_.factorized()) return;
+  const bool ready = chol_.factorized() || (opt_.pdas_cg_only && cg_);
+  if (!new_matrices && ready) return;
+  if (same_matrix(qp.S, S_) && ready) return;
   S_ = qp.S;
   S_.makeCompressed();
   if (!has_diagonal(S_, n_)) throw NumericalError("pdas: S has a zero diagonal entry: it is not positive definite");
+  if (opt_.pdas_cg_only) {
+    // No factor: CG on S̃ for every held set (a breakdown of CG, pᵀSp ≤ 0, is reported
+    // as non-convergence by solve_tilde).
+    cg_.reset();
+    cg_.emplace(S_);
+    cg_mode_ = true;
+    cg_failed_ = false;
+    cg_held_.assign(n_, 0);
+    return;
+  }
   if (!chol_.analyzed_for(S_)) {
     chol_.analyze(S_);
     ++counters_.analyses;
@@ -203,6 +214,10 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
 }
 
 void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
+  if (opt_.pdas_cg_only) {
+    cg_held_ = held;
+    return;
+  }
   if (fresh || !chol_.factorized()) return refactorize(held);
   if (held == factor_held_) {
     cg_mode_ = false;
@@ -233,9 +248,10 @@ Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, dou
     // few rows and the right-hand side by O(dt)).
     Eigen::VectorXd y = y_last_;
     MaskedCGResult run;
+    const int cap = opt_.pdas_cg_only ? std::max(opt_.pdas_cg_iterations, 2000) : opt_.pdas_cg_iterations;
     {
       ScopeTimer timer(counters_.cg_s);
-      run = cg_->solve(cg_held_, b, y, cg_tol, opt_.pdas_cg_iterations, resume);
+      run = cg_->solve(cg_held_, b, y, cg_tol, cap, resume);
     }
     counters_.cg_iterations += run.iterations;
     cg_since_sync_ += run.iterations;
@@ -246,6 +262,10 @@ Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, dou
       y_last_ = y;
       return y;
     }
+    if (opt_.pdas_cg_only)
+      throw NumericalError("pdas: CG on the reduced system did not converge in " + std::to_string(run.iterations) +
+                           " iterations (scaled residual " + std::to_string(run.scaled_residual) +
+                           "): the step matrix is not well conditioned enough for the CG path (use the factor)");
     cg_failed_ = true;  // S̃ not well conditioned enough: the factor from now on
     sync_factor(cg_held_);
   }

@@ -28,6 +28,9 @@
 // A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
 // stops at the first non-positive pivot: NumericalError naming the unknown) and is the
 // unconstrained solve of a cold start.
+//
+// QPOptions::pdas_cg_only: no factor at all, every system by CG (large 3D problems,
+// whose factor does not fit or costs more than the CG iterations).
 #pragma once
 
 #include <optional>
@@ -55,7 +58,9 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool last_inexact() const override { return last_by_cg_; }
   void resume_next() override { resume_cg_ = true; }
   void set_first_guess(const Eigen::VectorXd& X) override { y_last_ = X; }
-  bool refactorization_may_help() const override { return cg_mode_ || updates_since_factorization_ > 0; }
+  bool refactorization_may_help() const override {
+    return !opt_.pdas_cg_only && (cg_mode_ || updates_since_factorization_ > 0);
+  }
 
  private:
   void factorize(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,

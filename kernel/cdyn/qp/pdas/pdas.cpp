@@ -133,6 +133,9 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     return finish("");
   }
   s.form.set(qp, !new_matrices);
+  if (qp.saddle && opt.pdas_cg_only)
+    throw InputError("linear", "the CG path needs an explicit step matrix; this pair's step is in saddle form "
+                               "(H^h continuous: P1+/P1, P2/P1), solved by UMFPACK");
   s.system = qp.saddle ? static_cast<ReducedSystem*>(&s.saddle_system) : &s.explicit_system;
   ReducedSystem& system = *s.system;
   system.prepare(qp, new_matrices);
