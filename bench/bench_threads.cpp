@@ -21,7 +21,8 @@
 // Run (Release build, an idle machine; about 8 minutes):
 //   build/bench/bench_threads --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 // CDYN_BENCH_SIZES=80,160 runs other sizes (the window is the same: the impact time does not
-// depend on the mesh).
+// depend on the mesh); CDYN_BENCH_LINEAR=cg solves the step QPs by CG alone (solver.linear =
+// "cg": no factor, so no triangular solve left on one core).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -49,6 +50,11 @@ struct Method {
 };
 const Method kMethods[] = {{"P1+/P0", "midpoint"}, {"P1/P1", "backward_euler"}};
 
+bool cg_only() {
+  const char* s = std::getenv("CDYN_BENCH_LINEAR");
+  return s && std::string(s) == "cg";
+}
+
 std::vector<int> sizes() {
   const char* s = std::getenv("CDYN_BENCH_SIZES");
   std::vector<int> out;
@@ -75,6 +81,7 @@ void window(benchmark::State& state, const Method& method, int threads) {
   const bench::SeedMembrane& m = membrane(n, method.pair);
   QPOptions opt;
   opt.tol = 1e-12;  // the scene's solver.tol
+  opt.pdas_cg_only = cg_only();
   SchemeParameters par;
   par.tol = opt.tol;
   double qp = 0, cg_s = 0, solve_s = 0, factor_s = 0;
