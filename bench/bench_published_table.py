@@ -10,7 +10,7 @@ treating the full steps (docs/schemes.md):
 
 For each cell: |J(T) − J0|/J0, max_t |J − J0|/J0, the largest violation at the full steps
 and the wall time per step; the discrete gradient's time against the reconstructed
-midpoint's.  One core (OPENBLAS_NUM_THREADS=1).
+midpoint's.  One core (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1).
 
     /usr/bin/python3 bench/bench_published_table.py build/apps/cdyn out/published
 """
@@ -29,7 +29,7 @@ DTS = [0.01, 0.004, 0.001, 0.0004]
 def run(cdyn, out, pair, n, dt, scheme, reconstruct):
     name = f"{pair.replace('/', '_').replace('+', 'b')}_n{n}_dt{dt}_{scheme}_{'r' if reconstruct else 'x'}"
     d = os.path.join(out, name)
-    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
     subprocess.run([cdyn, "run", "--out", d, "--quiet", "--set", f"method.pair={pair}", "--set", f"mesh.n={n}",
                     "--set", f"time.dt={dt}", "--set", f"time.scheme={scheme}", "--set",
                     f"time.reconstruct={'true' if reconstruct else 'false'}", "--set", "output.fields=false",

@@ -19,7 +19,7 @@ Each (regime, method) runs R times with and R times without the obstacle, altern
 so that both see the same machine; the figure is the ratio of the means over the window
 of history.csv's step_s (the whole step: QP, update, reconstruction), averaged over the
 repetitions — the mean, not the median: the slow steps are the point. One core
-(OPENBLAS_NUM_THREADS=1), fields and plots off.
+(OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), fields and plots off.
 """
 import argparse
 import csv
@@ -47,7 +47,7 @@ def run(cdyn, scene, out, sets):
                                                        "--set", "output.fields=false", "--set", "output.plots=false"]
     for s in sets:
         args += ["--set", s]
-    subprocess.run(args, check=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    subprocess.run(args, check=True, env=dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1"))
     with open(os.path.join(out, "history.csv")) as f:
         rows = list(csv.DictReader(f))
     with open(os.path.join(out, "summary.json")) as f:

@@ -1,8 +1,11 @@
 // seed_membrane.hpp — the problem the step benchmarks time: the seed's membrane of
 // data/scenes/membrane.toml (P1+/P0, f = −0.6, u = 0.02 on the boundary and at t = 0,
 // v = 0, u ≥ 0 at every free vertex), on unit_square_mesh(n), with or without its
-// obstacle (the linear reference: the same S, no bounds).
+// obstacle (the linear reference: the same S, no bounds), with another pair if asked
+// (method.pair, e.g. "P1/P1").
 #pragma once
+
+#include <string>
 
 #include "cdyn/problems/scalar_wave.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
@@ -13,9 +16,9 @@ struct SeedMembrane {
   Mesh mesh;
   ConstrainedProblem p;
 
-  SeedMembrane(int n, bool obstacle) : mesh(unit_square_mesh(n)) {
+  SeedMembrane(int n, bool obstacle, const std::string& pair = "P1+/P0") : mesh(unit_square_mesh(n)) {
     ScalarWaveData d;
-    d.mass = cdyn::MassSpec::parse("P0", Element::P1Bubble);
+    d.mass = cdyn::MassSpec::parse(pair);
     d.f = [](double, double, double) { return -0.6; };
     d.dirichlet_parts = {mesh.part_index("bottom"), mesh.part_index("right"), mesh.part_index("top"),
                          mesh.part_index("left")};

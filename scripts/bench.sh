@@ -1,17 +1,20 @@
 #!/bin/sh
-# bench.sh — runs the benchmark set of docs/performance.md, about 9–10 minutes on the 2-core
+# bench.sh — runs the benchmark set of docs/performance.md, about 20 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
-# BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers
-# and bench_condition12 built (cmake --build BUILD --target cdyn_app bench_contact_step bench_step_solvers
-# bench_condition12).
+# BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers,
+# bench_condition12 and bench_threads built (cmake --build BUILD --target cdyn_app bench_contact_step
+# bench_step_solvers bench_condition12 bench_threads).
 set -e
 BUILD=${1:-build}
 OUT=${2:-out/bench}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 PY=/usr/bin/python3
-# One core for every timing: OpenBLAS (under CHOLMOD's supernodal solves) would otherwise
-# start a second thread, which spins while idle and could give the linear step's
-# forward/back solve a core that the contact step's CG does not use.
+# One core for every timing that compares ratios: the kernel's loops (OpenMP) and OpenBLAS
+# (under CHOLMOD's supernodal solves) would otherwise take both, and a ratio would then
+# compare parts that use the second core differently (the linear step's forward/back
+# solve barely, the contact step's CG fully).  Only (i), the speed-up of two threads over
+# one, sets its counts itself (solver.threads, set_thread_count), both in the same run.
+export OMP_NUM_THREADS=1
 export OPENBLAS_NUM_THREADS=1
 mkdir -p "$OUT"
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -41,4 +44,6 @@ echo "== (h) contact in every regime: impact, resting, chatter, disk, beam (P1+/
 $PY "$ROOT/bench/bench_regimes.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/regimes" --repeat 2
 echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
+echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 8 minutes"
+"$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -22,6 +22,8 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   j["full_steps"] = to_string(sim.scheme->full_steps());
   j["solver"] = sim.solver_name;
   j["solver_tol"] = sim.tol;
+  j["threads"] = sim.threads;
+  j["blas_threads"] = sim.blas_threads > 0 ? nlohmann::ordered_json(sim.blas_threads) : nlohmann::ordered_json();
   j["n_dofs"] = p.W->n_dofs();
   j["n_free"] = p.n_free();
   j["n_velocity"] = p.mass->n_velocity();
@@ -95,11 +97,12 @@ void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, c
   const double wall = r.totals.wall_seconds;
   std::printf(
       "cdyn run %s: %s, %s, %s, solver %s.%s%s\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
-      "%.3f s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "
+      "%.3f s on %d thread%s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "
       "violation %.2e.\n  Condition (12): %s.\n",
       sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), sim.solver_name.c_str(),
       r.partial ? "\n  " : "", label.c_str(), p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()),
-      r.steps_done, sim.dt, r.state.t, wall, wall / per, r.totals.qp_iterations / per, r.E0, r.E_final, energy,
+      r.steps_done, sim.dt, r.state.t, wall, sim.threads, sim.threads == 1 ? "" : "s", wall / per,
+      r.totals.qp_iterations / per, r.E0, r.E_final, energy,
       r.totals.max_violation, wellposedness_line(j["wellposed"]).c_str());
   if (r.resumed_at >= 0) std::printf("  Resumed from the checkpoint of step %d.\n", r.resumed_at);
   std::string written;

@@ -36,7 +36,7 @@ const std::set<std::string> kKnownKeys = {
     "time.beta",      "time.gamma",     "time.restitution", "time.reconstruct", "time.energy_tol",
     "damping.alpha",  "damping.beta",
     "solver.name",    "solver.tol",     "solver.max_iterations",
-    "solver.condense", "solver.cg_iterations", "solver.free_block", "solver.linear",
+    "solver.condense", "solver.cg_iterations", "solver.free_block", "solver.linear", "solver.threads",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
     "output.stress",  "output.checkpoint_every",

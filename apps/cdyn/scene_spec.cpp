@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <thread>
 
 #include "cdyn/base/error.hpp"
 #include "expression.hpp"
@@ -347,6 +348,13 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   if (linear == "cg" && v.name != "pdas")
     throw InputError("solver.linear: the CG path is pdas's (solver.name = " + v.name + ")");
   v.options.pdas_cg_only = linear == "cg";
+  v.threads = s.integer("solver.threads", 0);
+  if (v.threads < 0)
+    throw InputError("solver.threads: must be 0 (the environment's count, OMP_NUM_THREADS) or a number of threads ≥ 1");
+  // more threads than cores: accepted (the results are the same), but slower than one per core
+  if (const unsigned cores = std::thread::hardware_concurrency(); cores > 0 && unsigned(v.threads) > cores)
+    spec.warnings.push_back("solver.threads = " + std::to_string(v.threads) + " is more than the " +
+                            std::to_string(cores) + " cores of this machine: the threads will share them");
 }
 
 // units = "length, force, time", e.g. "mm, N, s".

@@ -107,6 +107,7 @@ struct SceneSpec {
   struct Solver {
     std::string name = "pdas";
     QPOptions options;
+    int threads = 0;  // solver.threads: the kernel's loops (0: the environment's count, OMP_NUM_THREADS)
   } solver;
 
   // `units`: the names of the units of length, force and time the scene's numbers are

@@ -6,6 +6,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
+#include "cdyn/linalg/threads.hpp"
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/problems/oscillator.hpp"
 #include "cdyn/problems/scalar_wave.hpp"
@@ -247,6 +248,14 @@ Simulation make_simulation(const SceneSpec& spec) {
   Simulation sim;
   sim.spec = spec;
   const SceneSpec& s = sim.spec;
+  // The threads of the kernel's loops are the process's (the OpenMP runtime's): set for
+  // every simulation, so that a run without solver.threads after one with it in the same
+  // process (cdyn study, Python) gets the environment's count back.  The BLAS keeps its
+  // own (OPENBLAS_NUM_THREADS), which would change the factor's round-off: with it fixed,
+  // a run is the same bit for bit whatever solver.threads (linalg/threads.hpp).
+  set_thread_count(s.solver.threads);
+  sim.threads = thread_count();
+  sim.blas_threads = blas_thread_count();
   sim.scene_name = s.name;
   sim.model = s.physics.model;
   with_scene_keys(s, [&] { build_problem(sim); });

@@ -30,6 +30,9 @@ struct Simulation {
   std::string scene_name, model, pair, scheme_name, solver_name;
   double dt = 0, T = 0, tol = 0;
   int n_steps = 0, output_every = 1;
+  // The threads of the kernel's loops (solver.threads or OMP_NUM_THREADS) and of the BLAS
+  // under CHOLMOD (the environment's; 0: a BLAS that cannot tell; linalg/threads.hpp).
+  int threads = 1, blas_threads = 0;
   int contact_every = 1;  // period of contact.csv's rows (elasticity)
   std::unique_ptr<Mesh> mesh;
   ConstrainedProblem problem;

@@ -24,8 +24,10 @@
 // linalg/
 #include "cdyn/linalg/least_squares.hpp"
 #include "cdyn/linalg/masked_cg.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
 #include "cdyn/linalg/symmetric_gauss_seidel.hpp"
+#include "cdyn/linalg/threads.hpp"
 // mass/
 #include "cdyn/mass/classical.hpp"
 #include "cdyn/mass/mass_model.hpp"

@@ -5,17 +5,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cdyn/linalg/parallel.hpp"
+
 namespace cdyn {
 
 namespace {
 
 // q_i = (S p)_i on the free rows (0 on the held ones).  S is symmetric, so row i is
-// column i of the column-major storage.
+// column i of the column-major storage: a gather, shared among the threads by rows.
 void product(const SparseMatrix& S, const std::vector<char>& held, const double* p, double* q) {
   const int n = static_cast<int>(held.size());
   const int* outer = S.outerIndexPtr();
   const int* inner = S.innerIndexPtr();
   const double* v = S.valuePtr();
+#pragma omp parallel for schedule(static) if (S.nonZeros() >= kParallelWork)
   for (int i = 0; i < n; ++i) {
     double sum = 0.0;
     if (!held[i])
@@ -29,23 +32,42 @@ double scaled_max(const Eigen::VectorXd& x, const Eigen::VectorXd& s) { return x
 
 // The sweep after the operator, y += α D^{-1/2} t, r̂ −= α q, with the two reductions the
 // next step needs, r̂ᵀr̂ and max |r̂_i| / S_ii^{1/2}: one pass over the vectors instead of
-// four.  `omp simd` (compiled with -fopenmp-simd, no OpenMP runtime) lets the compiler
-// keep vector partial sums for the reductions, which it must not do on its own (it
-// would reassociate floating-point additions).
+// four.  By blocks of kBlock entries (linalg/parallel.hpp, rule 2): the blocks are
+// shared among the threads, and r̂ᵀr̂ is the sum of the blocks' sums in order, the same
+// on any number of threads (a maximum is exact in any order).  Within a block `omp simd`
+// lets the compiler keep vector partial sums, which it must not do on its own (it would
+// reassociate floating-point additions).  `block_rr`: work space, one entry per block.
 struct Sweep {
   double rr, proxy;
 };
 Sweep update(int n, double alpha, const double* t, const double* q, const double* inverse_sqrt_d, double* y,
-             double* r_hat) {
-  double rr = 0.0, proxy = 0.0;
-#pragma omp simd reduction(+ : rr) reduction(max : proxy)
-  for (int i = 0; i < n; ++i) {
-    y[i] += alpha * t[i] * inverse_sqrt_d[i];
-    r_hat[i] -= alpha * q[i];
-    rr += r_hat[i] * r_hat[i];
-    proxy = std::max(proxy, std::abs(r_hat[i]) * inverse_sqrt_d[i]);
+             double* r_hat, std::vector<double>& block_rr) {
+  const int blocks = block_count(n);
+  block_rr.resize(blocks);
+  double proxy = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : proxy) if (5L * n >= kParallelWork)
+  for (int b = 0; b < blocks; ++b) {
+    const int end = std::min(n, (b + 1) * kBlock);
+    double rr = 0.0, block_proxy = 0.0;
+#pragma omp simd reduction(+ : rr) reduction(max : block_proxy)
+    for (int i = b * kBlock; i < end; ++i) {
+      y[i] += alpha * t[i] * inverse_sqrt_d[i];
+      r_hat[i] -= alpha * q[i];
+      rr += r_hat[i] * r_hat[i];
+      block_proxy = std::max(block_proxy, std::abs(r_hat[i]) * inverse_sqrt_d[i]);
+    }
+    block_rr[b] = rr;
+    proxy = std::max(proxy, block_proxy);
   }
+  double rr = 0.0;
+  for (double s : block_rr) rr += s;
   return {rr, proxy};
+}
+
+// p = r̂ + β p, shared among the threads by entries.
+void next_direction(int n, const double* r_hat, double beta, double* p) {
+#pragma omp parallel for schedule(static) if (2L * n >= kParallelWork)
+  for (int i = 0; i < n; ++i) p[i] = r_hat[i] + beta * p[i];
 }
 
 }  // namespace
@@ -74,7 +96,7 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
       result.converged = true;
       return result;
     }
-    p_ = r_hat_ + (rr_next_ / rr_) * p_;
+    next_direction(n, r_hat_.data(), rr_next_ / rr_, p_.data());
     rr_ = rr_next_;
   } else {
     if (y.size() != n) y = Eigen::VectorXd::Zero(n);
@@ -96,12 +118,13 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     // r̂ = L̂⁻¹ D^{-1/2} r
     q_ = r_.cwiseProduct(inverse_sqrt_D_);
     sgs_.solve_lower(held, q_.data(), r_hat_.data());
-    rr_ = r_hat_.squaredNorm();
+    rr_ = dot(r_hat_, r_hat_);
     p_ = r_hat_;
   }
   for (int k = 1; k <= max_iterations; ++k) {
     const double alpha = rr_ / sgs_.apply(held, p_.data(), t_.data(), w_.data(), q_.data());
-    const Sweep sweep = update(n, alpha, t_.data(), q_.data(), inverse_sqrt_D_.data(), y.data(), r_hat_.data());
+    const Sweep sweep =
+        update(n, alpha, t_.data(), q_.data(), inverse_sqrt_D_.data(), y.data(), r_hat_.data(), block_rr_);
     result.iterations = k;
     if (!std::isfinite(sweep.rr)) {  // (a NaN passes max() unseen, not a sum)
       result.scaled_residual = sweep.rr;
@@ -116,9 +139,8 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
         return result;
       }
     }
-    const double beta = sweep.rr / rr_;
+    next_direction(n, r_hat_.data(), sweep.rr / rr_, p_.data());
     rr_ = sweep.rr;
-    p_ = r_hat_ + beta * p_;
   }
   result.scaled_residual = unprecondition();
   return result;

@@ -20,6 +20,10 @@
 // max |r̂_i| / S_ii^{1/2} first (within a factor 1 + ‖L̂ − I‖∞ of the true quantity) and,
 // when that passes, on r itself, D^{1/2} L̂ r̂ (one sweep's worth of reading).
 //
+// Threads: the product, the sweeps and the vector updates are shared among the threads,
+// and the reductions are summed by blocks of a fixed length, so that the iterates do not
+// depend on the thread count, bit for bit (linalg/parallel.hpp).
+//
 // On the condensed P1+/P0 membrane (n = 160, 25k unknowns, the contact window of
 // docs/performance.md (a)) a solve takes 5 iterations on average, 0.25 ms each with its
 // share of the solve's set-up (the first residual is one product with S): a seventh of
@@ -64,6 +68,7 @@ class MaskedCG {
   SymmetricGaussSeidel sgs_;
   Eigen::VectorXd D_, inverse_sqrt_D_;  // diag(S), diag(S)^{-1/2}
   Eigen::VectorXd r_, r_hat_, p_, t_, w_, q_;
+  std::vector<double> block_rr_;  // the blocks' shares of r̂ᵀr̂ (linalg/parallel.hpp)
   // the state an iteration that converged stops in, for resume
   bool resumable_ = false;
   double rr_ = 0.0, rr_next_ = 0.0, last_scaled_ = 0.0;  // r̂ᵀr̂ for p_, r̂ᵀr̂ now, the test's value

@@ -3,6 +3,7 @@
 #include "cdyn/linalg/symmetric_gauss_seidel.hpp"
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 
 namespace cdyn {
 
@@ -54,56 +55,76 @@ SymmetricGaussSeidel::SymmetricGaussSeidel(const SparseMatrix& S) {
 
 // In both sweeps the rows of one colour do not depend on each other: each is a gather
 // of the finished values of other colours, and the loop runs at the speed of a product.
+// So a colour's rows are shared among the threads (static schedule), the colours taken in
+// turn with a barrier between them (the end of each `omp for`); every row is computed by
+// one thread in the order of one thread, and the sweeps give the same result on any
+// number of threads (linalg/parallel.hpp, rule 1).
+
+namespace {
+
+// s − Σ_p T_p x[column_p] and s + Σ_p T_p x[column_p] over row k (in sweep order) of a
+// triangle T: a row of a sweep (a solve) and of a product.
+template <class Triangle>
+double minus_row(const Triangle& T, int k, double s, const double* x) {
+  for (int p = T.start[k]; p < T.start[k + 1]; ++p) s -= T.value[p] * x[T.column[p]];
+  return s;
+}
+template <class Triangle>
+double plus_row(const Triangle& T, int k, double s, const double* x) {
+  for (int p = T.start[k]; p < T.start[k + 1]; ++p) s += T.value[p] * x[T.column[p]];
+  return s;
+}
+
+}  // namespace
+
+bool SymmetricGaussSeidel::threaded() const { return lower_.column.size() + upper_.column.size() >= kParallelWork; }
 
 void SymmetricGaussSeidel::solve_lower(const std::vector<char>& held, const double* in, double* out) const {
-  for (int k = 0; k < size(); ++k) {
-    const int i = rows_[k];
-    double s = 0.0;
-    if (!held[i]) {
-      s = in[i];
-      for (int p = lower_.start[k]; p < lower_.start[k + 1]; ++p) s -= lower_.value[p] * out[lower_.column[p]];
+#pragma omp parallel if (threaded())
+  for (int c = 0; c < colours(); ++c) {
+#pragma omp for schedule(static)
+    for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
+      const int i = rows_[k];
+      out[i] = held[i] ? 0.0 : minus_row(lower_, k, in[i], out);
     }
-    out[i] = s;
   }
 }
 
 void SymmetricGaussSeidel::multiply_lower(const std::vector<char>& held, const double* in, double* out) const {
+#pragma omp parallel for schedule(static) if (threaded())
   for (int k = 0; k < size(); ++k) {
     const int i = rows_[k];
-    double s = 0.0;
-    if (!held[i]) {
-      s = in[i];
-      for (int p = lower_.start[k]; p < lower_.start[k + 1]; ++p) s += lower_.value[p] * in[lower_.column[p]];
-    }
-    out[i] = s;
+    out[i] = held[i] ? 0.0 : plus_row(lower_, k, in[i], in);
   }
 }
 
 double SymmetricGaussSeidel::apply(const std::vector<char>& held, const double* v, double* t, double* w,
                                    double* q) const {
-  // t = L̂⁻ᵀ v: the colours in reverse, each row gathering later colours
-  for (int k = size() - 1; k >= 0; --k) {
-    const int i = rows_[k];
-    double s = 0.0;
-    if (!held[i]) {
-      s = v[i];
-      for (int p = upper_.start[k]; p < upper_.start[k + 1]; ++p) s -= upper_.value[p] * t[upper_.column[p]];
+  const int n = size();
+#pragma omp parallel if (threaded())
+  {
+    // t = L̂⁻ᵀ v: the colours in reverse, each row gathering later colours
+    for (int c = colours() - 1; c >= 0; --c) {
+#pragma omp for schedule(static)
+      for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
+        const int i = rows_[k];
+        t[i] = held[i] ? 0.0 : minus_row(upper_, k, v[i], t);
+      }
     }
-    t[i] = s;
-  }
-  // w = L̂⁻¹ (v − t), q = t + w
-  for (int k = 0; k < size(); ++k) {
-    const int i = rows_[k];
-    double s = 0.0;
-    if (!held[i]) {
-      s = v[i] - t[i];
-      for (int p = lower_.start[k]; p < lower_.start[k + 1]; ++p) s -= lower_.value[p] * w[lower_.column[p]];
+    // w = L̂⁻¹ (v − t), q = t + w
+    for (int c = 0; c < colours(); ++c) {
+#pragma omp for schedule(static)
+      for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
+        const int i = rows_[k];
+        const double s = held[i] ? 0.0 : minus_row(lower_, k, v[i] - t[i], w);
+        w[i] = s;
+        q[i] = t[i] + s;
+      }
     }
-    w[i] = s;
-    q[i] = t[i] + s;
   }
-  // vᵀq in a separate, vectorized pass: inside the sweep the sum would chain every row
-  return Eigen::Map<const Eigen::VectorXd>(v, size()).dot(Eigen::Map<const Eigen::VectorXd>(q, size()));
+  // vᵀq in a separate, vectorized pass by blocks: inside the sweep the sum would chain
+  // every row, and its order would follow the colours' split among the threads
+  return dot(n, v, q);
 }
 
 }  // namespace cdyn

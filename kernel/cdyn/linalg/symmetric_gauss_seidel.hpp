@@ -22,6 +22,10 @@
 // 7 000 held vertices) CG reduces the residual by 1e-12 in 17 iterations with this
 // preconditioner, against 40 with Jacobi's and 14 with the natural ordering's sweeps.
 //
+// Threads.  The rows of one colour are shared among the threads, the colours taken in
+// turn; each row is computed by one thread as on one thread, so the sweeps' results do not
+// depend on the thread count (linalg/parallel.hpp).
+//
 // Held rows.  Every operation takes a held set A (the active set of a PDAS iterate): the
 // rows of A are skipped and set to 0, so everything acts on S_II (I = the complement of
 // A) without forming it — the entries to columns of A meet zeros.
@@ -51,6 +55,8 @@ class SymmetricGaussSeidel {
   void multiply_lower(const std::vector<char>& held, const double* in, double* out) const;
 
  private:
+  bool threaded() const;  // whether a sweep is long enough for threads (linalg/parallel.hpp)
+
   // One strict triangle of Ŝ: for each row in sweep order (rows_), its entries to
   // earlier colours (lower_) or to later ones (upper_), compressed.
   struct Triangle {

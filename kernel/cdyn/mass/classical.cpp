@@ -5,6 +5,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/linalg/least_squares.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/mass/redistribution.hpp"
 
 namespace cdyn {
@@ -26,7 +27,7 @@ class ClassicalMassModel final : public MassModel {
   SaddleForm saddle(const SparseMatrix& A, double k) const override { return SaddleForm{A, Bs_, Cs_, k}; }
   Eigen::VectorXd momentum(const Eigen::VectorXd& V) const override {
     check(V);
-    return M_ * V;
+    return symmetric_times(M_, V);
   }
   Eigen::VectorXd velocity(const Eigen::VectorXd& Wdot) const override {
     check(Wdot);
@@ -34,7 +35,7 @@ class ClassicalMassModel final : public MassModel {
   }
   double kinetic_energy(const Eigen::VectorXd& V) const override {
     check(V);
-    return 0.5 * V.dot(M_ * V);
+    return 0.5 * dot(V, symmetric_times(M_, V));
   }
   // V = U̇, so A = Ü solves M Ü = F (least squares for the singular redistributed M:
   // its massless contact dofs get a basic solution, which no energy or momentum sees).

@@ -6,6 +6,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/linalg/least_squares.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
 
 namespace cdyn {
@@ -22,6 +23,8 @@ class MixedMassModel final : public MassModel {
  public:
   MixedMassModel(std::string name, MixedBlocks blocks, bool diagonal_C)
       : name_(std::move(name)), B_(std::move(blocks.B)), C_(std::move(blocks.C)), diagonal_(diagonal_C) {
+    B_.makeCompressed();
+    Bt_ = transposed(B_);
     if (diagonal_) {
       // H^h = P0: C = diag(ρ|T|) (one entry per cell and component).
       Cdiag_ = C_.diagonal();
@@ -41,7 +44,6 @@ class MixedMassModel final : public MassModel {
       M_ = std::move(M);
     } else {
       // H^h = W^h (P1/P1): B = C, and the velocity C⁻¹ B Ẇ is Ẇ itself (no solve).
-      B_.makeCompressed();
       C_.makeCompressed();
       identity_ = same_matrix(B_, C_);
       cholC_.compute(C_);
@@ -80,13 +82,13 @@ class MixedMassModel final : public MassModel {
 
   Eigen::VectorXd momentum(const Eigen::VectorXd& V) const override {
     check_size(V, B_.rows(), "V");
-    return B_.transpose() * V;
+    return transpose_times(B_, V);
   }
 
   Eigen::VectorXd velocity(const Eigen::VectorXd& Wdot) const override {
     check_size(Wdot, B_.cols(), "the displacement rate");
     if (identity_) return Wdot;
-    const Eigen::VectorXd rhs = B_ * Wdot;
+    const Eigen::VectorXd rhs = transpose_times(Bt_, Wdot);  // B Ẇ, gathered from Bᵀ's columns
     if (diagonal_) return rhs.cwiseQuotient(Cdiag_);
     Eigen::VectorXd V = cholC_.solve(rhs);
     return V;
@@ -94,7 +96,7 @@ class MixedMassModel final : public MassModel {
 
   double kinetic_energy(const Eigen::VectorXd& V) const override {
     check_size(V, C_.rows(), "V");
-    return 0.5 * V.dot(C_ * V);
+    return 0.5 * dot(V, symmetric_times(C_, V));
   }
 
   // H^h = P0: a = M⁺F, A = C⁻¹ B a (Ker M = Ker B, so the part of a that the least
@@ -110,6 +112,7 @@ class MixedMassModel final : public MassModel {
  private:
   std::string name_;
   SparseMatrix B_, C_;
+  SparseMatrix Bt_;  // Bᵀ in compressed columns: B x as a gather, threaded (linalg/parallel.hpp)
   bool diagonal_;
   bool identity_ = false;  // B = C
   Eigen::VectorXd Cdiag_;

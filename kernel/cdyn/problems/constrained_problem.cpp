@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "cdyn/linalg/parallel.hpp"
+
 namespace cdyn {
 
 const ConstrainedProblem::CachedLoad& ConstrainedProblem::cached_load(double t) const {
@@ -38,7 +40,7 @@ Eigen::VectorXd ConstrainedProblem::local(const Eigen::VectorXd& X) const {
 
 double ConstrainedProblem::potential_energy(const Eigen::VectorXd& Uf, double t) const {
   const Eigen::VectorXd U = full(Uf);
-  return 0.5 * U.dot(A_full * U) - full_load(t).dot(U);
+  return 0.5 * dot(U, symmetric_times(A_full, U)) - dot(full_load(t), U);
 }
 
 void ConstrainedProblem::bounds(double t, Eigen::VectorXd& lower_t, Eigen::VectorXd& upper_t) const {

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 
 namespace cdyn {
 
@@ -98,21 +99,38 @@ DiagonalCondensation::DiagonalCondensation(const SparseMatrix& S, const Eigen::V
   // exact symmetry (duplicates are summed in different orders in the two triangles)
   S_c_ = 0.5 * (S_c_ + SparseMatrix(S_c_.transpose()));
   S_c_.makeCompressed();
+
+  // S_bv from S's columns b: for each kept j, its entries S_jb in the order of b
+  std::vector<Eigen::Triplet<double>> bv;
+  for (int k = 0; k < n_condensed(); ++k)
+    for (SparseMatrix::InnerIterator it(S_, condensed_[k]); it; ++it)
+      if (it.row() != condensed_[k]) bv.emplace_back(k, kept_of_[it.row()], it.value());
+  S_bv_.resize(n_condensed(), n_kept());
+  S_bv_.setFromTriplets(bv.begin(), bv.end());
+  S_bv_.makeCompressed();
 }
 
 Eigen::VectorXd DiagonalCondensation::kept(const Eigen::VectorXd& x) const {
   Eigen::VectorXd out(n_kept());
+#pragma omp parallel for schedule(static) if (n_kept() >= kParallelWork)
   for (int k = 0; k < n_kept(); ++k) out[k] = x[kept_[k]];
   return out;
 }
 
+// r_c,j = r_j − Σ_b S_jb y_b with y_b = r_b / S_bb, the terms subtracted one by one in
+// the order of b.
 Eigen::VectorXd DiagonalCondensation::reduce(const Eigen::VectorXd& r) const {
-  Eigen::VectorXd rc = kept(r);
-  for (int k = 0; k < n_condensed(); ++k) {
-    const int b = condensed_[k];
-    const double y = r[b] / S_bb_[k];
-    for (SparseMatrix::InnerIterator it(S_, b); it; ++it)
-      if (it.row() != b) rc[kept_of_[it.row()]] -= it.value() * y;
+  Eigen::VectorXd y(n_condensed());
+  for (int k = 0; k < n_condensed(); ++k) y[k] = r[condensed_[k]] / S_bb_[k];
+  const int* outer = S_bv_.outerIndexPtr();
+  const int* inner = S_bv_.innerIndexPtr();
+  const double* v = S_bv_.valuePtr();
+  Eigen::VectorXd rc(n_kept());
+#pragma omp parallel for schedule(static) if (S_bv_.nonZeros() >= kParallelWork)
+  for (int j = 0; j < n_kept(); ++j) {
+    double s = r[kept_[j]];
+    for (int p = outer[j]; p < outer[j + 1]; ++p) s -= v[p] * y[inner[p]];
+    rc[j] = s;
   }
   return rc;
 }
@@ -120,6 +138,7 @@ Eigen::VectorXd DiagonalCondensation::reduce(const Eigen::VectorXd& r) const {
 Eigen::VectorXd DiagonalCondensation::expand(const Eigen::VectorXd& X_v, const Eigen::VectorXd& r) const {
   Eigen::VectorXd X(n());
   for (int k = 0; k < n_kept(); ++k) X[kept_[k]] = X_v[k];
+#pragma omp parallel for schedule(static) if (S_bv_.nonZeros() >= kParallelWork)
   for (int k = 0; k < n_condensed(); ++k) {
     const int b = condensed_[k];
     double rb = r[b];

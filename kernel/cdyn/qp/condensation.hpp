@@ -25,6 +25,10 @@
 // and those vertices are coupled to each other; an interior P1 vertex is not taken,
 // its neighbours (the ring around it) are not a clique.  At n = 160 the step system
 // shrinks from 76 481 to 25 281 unknowns (docs/performance.md).
+//
+// reduce() and expand() are gathers, one entry of the result per kept or condensed
+// unknown, shared among the threads (linalg/parallel.hpp): r_c from S_bv's columns, X_b
+// from S's columns b.
 #pragma once
 
 #include <Eigen/Core>
@@ -58,7 +62,8 @@ class DiagonalCondensation {
   Eigen::VectorXd expand_reaction(const Eigen::VectorXd& lambda_v) const;
 
  private:
-  SparseMatrix S_;                 // the full S (its columns b are read by reduce/expand)
+  SparseMatrix S_;                 // the full S (its columns b are read by expand)
+  SparseMatrix S_bv_;              // S_bv: column j lists the condensed neighbours of kept j (reduce)
   SparseMatrix S_c_;
   std::vector<int> kept_, condensed_;  // unknown indices
   std::vector<int> kept_of_;       // unknown → index among kept, or −1 when condensed

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/qp/kkt.hpp"
 
 namespace cdyn {
@@ -32,10 +33,10 @@ void QuadraticForm::set(const BoundQP& qp, bool same_matrices) {
 }
 
 Eigen::VectorXd QuadraticForm::apply(const Eigen::VectorXd& X) const {
-  if (!qp_->saddle) return qp_->S * X;
+  if (!qp_->saddle) return symmetric_times(qp_->S, X);  // threaded (linalg/parallel.hpp)
   const SaddleForm& f = *qp_->saddle;
   const Eigen::VectorXd Z = c_factor_->solve(f.B * X);  // Z = C⁻¹ B X
-  return f.A * X + f.c * (f.B.transpose() * Z);
+  return symmetric_times(f.A, X) + f.c * transpose_times(f.B, Z);
 }
 
 double QuadraticForm::objective(const Eigen::VectorXd& X) const {

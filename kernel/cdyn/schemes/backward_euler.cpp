@@ -8,6 +8,7 @@
 // Rayleigh damping adds α Bᵀ V^{n+1} + β A (U^{n+1} − Uⁿ) c to the first equation, i.e.
 // (αM + βA)(U^{n+1} − Uⁿ) c:  S += αc M + βc A,  r += (αc M + βc A) Uⁿ,  and J + W_d
 // never increases (docs/schemes.md, "Rayleigh damping").
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
@@ -26,7 +27,7 @@ class BackwardEuler final : public StepQPScheme {
     constrain_at(s.t + dt_);  // U^{n+1} ∈ K̄^h(t^{n+1})
     // (c² + αc) M Uⁿ + c Bᵀ Vⁿ + βc A Uⁿ + L
     Eigen::VectorXd r = inertia(c * c + damping_.alpha * c, s.U, c, s.V) + p_.load(s.t + dt_);
-    if (damping_.beta > 0.0) r += damping_.beta * c * (p_.A * s.U);
+    if (damping_.beta > 0.0) r += damping_.beta * c * symmetric_times(p_.A, s.U);
     const Eigen::VectorXd U1 = solve(r, s, stats);
     stats.dissipated = damping_work(U1 - s.U, dt_);
     s.V = p_.mass->velocity(c * (U1 - s.U));

@@ -62,6 +62,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/problems/data_work.hpp"
 #include "cdyn/schemes/full_step.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
@@ -138,7 +139,7 @@ class DiscreteGradient final : public StepQPScheme {
     constrain_at(s.t + 0.5 * h);  // U^{n+½} ∈ K̄^h(t^{n+½})
     // (4c² + 2α_M c) M Uⁿ + 2c Bᵀ Vⁿ + 2β_K c A Uⁿ + L
     Eigen::VectorXd r0 = inertia(4 * c * c + 2 * damping_.alpha * c, s.U, 2 * c, s.V) + p_.load(s.t + 0.5 * h);
-    if (damping_.beta > 0.0) r0 += 2 * damping_.beta * c * (p_.A * s.U);
+    if (damping_.beta > 0.0) r0 += 2 * damping_.beta * c * symmetric_times(p_.A, s.U);
     const Eigen::VectorXd BtV = p_.mass->momentum(s.V);
     const double kinetic = p_.mass->kinetic_energy(s.V);
     const double t0 = s.t, t1 = s.t + h;

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
 namespace cdyn {
@@ -41,7 +42,7 @@ class EnergyConserving final : public StepQPScheme {
     } else {
       const auto [lower, upper] = velocity_bounds(s.U);
       set_bounds(lower, upper);
-      const Eigen::VectorXd r = c * c * mass_times(2.0 * s.U - U_prev_) - 0.25 * (p_.A * (2.0 * s.U + U_prev_)) +
+      const Eigen::VectorXd r = c * c * mass_times(2.0 * s.U - U_prev_) - 0.25 * symmetric_times(p_.A, 2.0 * s.U + U_prev_) +
                                 p_.load(s.t);
       U1 = solve(r, s, stats);
     }

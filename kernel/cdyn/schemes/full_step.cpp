@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 
 namespace cdyn {
 
@@ -40,6 +41,7 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   qp_.S = SparseMatrix(Z.transpose()) * (p.A * Z);
   qp_.S = 0.5 * (qp_.S + SparseMatrix(qp_.S.transpose()));  // exact symmetry
   qp_.S.makeCompressed();
+  Zt_ = transposed(Z);
   const int m = static_cast<int>(Z.cols());
   qp_.lower = Eigen::VectorXd::Constant(m, -std::numeric_limits<double>::infinity());
   qp_.upper = Eigen::VectorXd::Constant(m, std::numeric_limits<double>::infinity());
@@ -57,7 +59,7 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
     return U;
   }
   const SparseMatrix& Z = modes_.Z;
-  qp_.r = Z.transpose() * (p_.load(t) - p_.A * U);
+  qp_.r = transpose_times(Z, p_.load(t) - symmetric_times(p_.A, U));
   const Eigen::VectorXd* lower = &p_.lower;
   const Eigen::VectorXd* upper = &p_.upper;
   Eigen::VectorXd lower_t, upper_t;
@@ -73,7 +75,7 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
   last_ = solver_->solve(qp_, has_last_ ? &last_ : nullptr);
   has_last_ = true;
   if (kkt) *kkt = last_.kkt_residual;
-  return U + Z * last_.X;
+  return U + transpose_times(Zt_, last_.X);
 }
 
 void FullStepReconstruction::store(SchemeMemory& m) const { store_warm_start(m, "full_step", last_, has_last_); }

@@ -55,6 +55,7 @@ class FullStepReconstruction {
   bool available_ = false;
   const ConstrainedProblem& p_;
   MasslessModes modes_;
+  SparseMatrix Zt_;  // Zᵀ in compressed columns: Z d as a gather, threaded (linalg/parallel.hpp)
   BoundQP qp_;
   std::unique_ptr<StepSolver> solver_;
   QPResult last_;

@@ -23,6 +23,7 @@
 // step reads Uⁿ only through B Uⁿ, so this changes the reported state, not the dynamics.
 #include <optional>
 
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/schemes/full_step.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
@@ -73,10 +74,10 @@ class Midpoint final : public StepQPScheme {
     const double alpha = damping_.alpha, beta = damping_.beta;
     Eigen::VectorXd U1;
     if (at_end_) {  // (2c² + αc) M Uⁿ + 2c Bᵀ Vⁿ + (βc − ½) A Uⁿ + L
-      U1 = solve(inertia(2 * c * c + alpha * c, s.U, 2 * c, s.V) + (beta * c - 0.5) * (p_.A * s.U) + L, s, stats);
+      U1 = solve(inertia(2 * c * c + alpha * c, s.U, 2 * c, s.V) + (beta * c - 0.5) * symmetric_times(p_.A, s.U) + L, s, stats);
     } else {        // (4c² + 2αc) M Uⁿ + 2c Bᵀ Vⁿ + 2βc A Uⁿ + L
       Eigen::VectorXd r = inertia(4 * c * c + 2 * alpha * c, s.U, 2 * c, s.V) + L;
-      if (beta > 0.0) r += 2 * beta * c * (p_.A * s.U);
+      if (beta > 0.0) r += 2 * beta * c * symmetric_times(p_.A, s.U);
       U1 = 2.0 * solve(r, s, stats) - s.U;
     }
     stats.dissipated = damping_work(U1 - s.U, dt_);

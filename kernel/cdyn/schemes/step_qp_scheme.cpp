@@ -5,6 +5,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
+#include "cdyn/linalg/parallel.hpp"
 
 namespace cdyn {
 
@@ -54,8 +55,8 @@ void StepQPScheme::set_factors(double a, double m) {
 
 double StepQPScheme::damping_work(const Eigen::VectorXd& dU, double h) const {
   double w = 0.0;
-  if (damping_.alpha > 0.0) w += damping_.alpha * dU.dot(mass_times(dU));
-  if (damping_.beta > 0.0) w += damping_.beta * dU.dot(p_.A * dU);
+  if (damping_.alpha > 0.0) w += damping_.alpha * dot(dU, mass_times(dU));
+  if (damping_.beta > 0.0) w += damping_.beta * dot(dU, symmetric_times(p_.A, dU));
   return w / h;
 }
 

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 
 namespace cdyn {
 
@@ -294,6 +295,7 @@ Eigen::VectorXd ExplicitReducedSystem::reaction(const BoundQP& qp, const Quadrat
                                                 const Eigen::VectorXd& X, const HeldSet& held) const {
   if (!last_by_cg_) return ReducedSystem::reaction(qp, form, X, held);
   Eigen::VectorXd lam = -cg_->residual();
+#pragma omp parallel for schedule(static) if (S_.nonZeros() >= kParallelWork)
   for (int i = 0; i < n_; ++i)
     if (held[i]) {
       double sum = 0.0;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "cdyn/linalg/parallel.hpp"
+
 namespace cdyn {
 
 namespace {
@@ -36,6 +38,7 @@ void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, Sparse
   const int* inner = M.innerIndexPtr();
   const double* m = M.valuePtr();
   double* v = out.valuePtr();
+#pragma omp parallel for schedule(static) if (M.nonZeros() >= kParallelWork)
   for (int j = 0; j < M.outerSize(); ++j) {
     const bool aj = j < n && held[j];
     for (int p = outer[j]; p < outer[j + 1]; ++p) {

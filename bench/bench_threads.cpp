@@ -1,0 +1,155 @@
+// bench_threads.cpp — what the second core gives (docs/performance.md, "Both cores"): the
+// mean time of a step over the impact window of the seed's membrane (steps 211–310, as in
+// bench_contact_step.cpp: the active set jumps from 0 to thousands of vertices, then
+// chatters), for P1+/P0 midpoint and P1/P1 backward Euler, n = 320 and 640, on one thread
+// and on two (the kernel's loops, set_thread_count, and OpenBLAS under CHOLMOD,
+// set_blas_thread_count: linalg/threads.hpp).
+//
+//   window/<pair>/<scheme>/threads:K/n:N
+//
+// Each iteration builds a fresh scheme and solver, runs the 210 steps before the window
+// untimed with the loops on two threads and the BLAS on one (the same state at step 210
+// whatever K: the loops' results do not depend on their thread count, the BLAS's do, by
+// round-off), then times the window on K threads (manual time: seconds per step).  2 repetitions of each case; scripts/bench.sh interleaves them at random
+// (--benchmark_enable_random_interleaving=true) so that one and two threads see the same
+// machine.  Counters per step: qp_ms (the solver's share), cg_ms, solve_ms (forward/back
+// solves with the factor), fact_ms (numeric factorizations); unknowns, the free dofs.
+//
+// After the table: the speed-up t(1 thread) / t(2 threads) of each case (target ≥ 1.6),
+// and how far apart the states after the window are, max |U₁ − U₂| / max |U₁|: 0 but for
+// the BLAS's round-off (its threaded factorization and solve, linalg/threads.hpp).
+// Run (Release build, an idle machine; about 8 minutes):
+//   build/bench/bench_threads --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
+// CDYN_BENCH_SIZES=80,160 runs other sizes (the window is the same: the impact time does not
+// depend on the mesh); CDYN_BENCH_LINEAR=cg solves the step QPs by CG alone (solver.linear =
+// "cg": no factor, so no triangular solve left on one core).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cdyn/linalg/threads.hpp"
+#include "cdyn/qp/pdas/pdas.hpp"
+#include "seed_membrane.hpp"
+
+namespace {
+
+using namespace cdyn;
+
+constexpr int kBefore = 210, kWindow = 100;
+constexpr double kDt = 1e-3;
+
+struct Method {
+  std::string pair, scheme;
+};
+const Method kMethods[] = {{"P1+/P0", "midpoint"}, {"P1/P1", "backward_euler"}};
+
+bool cg_only() {
+  const char* s = std::getenv("CDYN_BENCH_LINEAR");
+  return s && std::string(s) == "cg";
+}
+
+std::vector<int> sizes() {
+  const char* s = std::getenv("CDYN_BENCH_SIZES");
+  std::vector<int> out;
+  std::stringstream list(s ? s : "320,640");
+  for (std::string n; std::getline(list, n, ',');) out.push_back(std::stoi(n));
+  return out;
+}
+
+const bench::SeedMembrane& membrane(int n, const std::string& pair) {
+  static std::map<std::pair<int, std::string>, std::unique_ptr<bench::SeedMembrane>> cache;
+  auto& m = cache[{n, pair}];
+  if (!m) m = std::make_unique<bench::SeedMembrane>(n, true, pair);
+  return *m;
+}
+
+struct Totals {
+  double seconds = 0.0, steps = 0.0;
+  Eigen::VectorXd last_U;  // the state after the window, to compare across thread counts
+};
+std::map<std::string, std::map<int, Totals>> g_totals;  // case name → threads → totals
+
+void window(benchmark::State& state, const Method& method, int threads) {
+  const int n = static_cast<int>(state.range(0));
+  const bench::SeedMembrane& m = membrane(n, method.pair);
+  QPOptions opt;
+  opt.tol = 1e-12;  // the scene's solver.tol
+  opt.pdas_cg_only = cg_only();
+  SchemeParameters par;
+  par.tol = opt.tol;
+  double qp = 0, cg_s = 0, solve_s = 0, factor_s = 0;
+  Totals& totals = g_totals[method.pair + " " + method.scheme + " n=" + std::to_string(n)][threads];
+  for (auto _ : state) {
+    PDASSolver solver(opt);
+    auto scheme = make_time_scheme(method.scheme, m.p, solver, kDt, par);
+    State s = m.initial();
+    set_thread_count(2);
+    set_blas_thread_count(1);
+    for (int k = 0; k < kBefore; ++k) scheme->step(s);
+    set_thread_count(threads);
+    set_blas_thread_count(threads);
+    const PDASSolver::Counters c0 = solver.counters();
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < kWindow; ++k) qp += scheme->step(s).qp_seconds;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    set_thread_count(0);
+    set_blas_thread_count(0);
+    state.SetIterationTime(seconds / kWindow);
+    totals.seconds += seconds;
+    totals.steps += kWindow;
+    totals.last_U = s.U;
+    cg_s += solver.counters().cg_s - c0.cg_s;
+    solve_s += solver.counters().solve_s - c0.solve_s;
+    factor_s += solver.counters().factorization_s - c0.factorization_s;
+  }
+  const double steps = static_cast<double>(state.iterations()) * kWindow;
+  state.counters["unknowns"] = static_cast<double>(m.p.n_free());
+  state.counters["qp_ms"] = 1e3 * qp / steps;
+  state.counters["cg_ms"] = 1e3 * cg_s / steps;
+  state.counters["solve_ms"] = 1e3 * solve_s / steps;
+  state.counters["fact_ms"] = 1e3 * factor_s / steps;
+}
+
+void register_all() {
+  for (int n : sizes())
+    for (const Method& method : kMethods)
+      for (int threads : {1, 2}) {
+        const std::string name = "window/" + method.pair + "/" + method.scheme + "/threads:" + std::to_string(threads);
+        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { window(s, method, threads); })
+            ->Arg(n)
+            ->ArgName("n")
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(1)
+            ->Repetitions(2)
+            ->ReportAggregatesOnly(true);
+      }
+}
+
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  std::printf("\nmean step over the window and the repetitions; speed-up = 1 thread / 2 threads (target >= 1.6)\n");
+  for (auto& [name, by_threads] : g_totals) {
+    if (!by_threads.count(1) || !by_threads.count(2)) continue;
+    const Totals &one = by_threads[1], &two = by_threads[2];
+    const double t1 = one.seconds / one.steps, t2 = two.seconds / two.steps;
+    const double apart = (one.last_U - two.last_U).lpNorm<Eigen::Infinity>() / one.last_U.lpNorm<Eigen::Infinity>();
+    std::printf("%-32s 1 thread %9.3f ms   2 threads %9.3f ms   speed-up %.2f   states apart %.1e\n", name.c_str(),
+                1e3 * t1, 1e3 * t2, t1 / t2, apart);
+  }
+  benchmark::Shutdown();
+  return 0;
+}

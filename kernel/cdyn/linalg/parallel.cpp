@@ -1,0 +1,68 @@
+// linalg/parallel.cpp — gathers over compressed columns and sums by blocks; see
+// linalg/parallel.hpp.
+#include "cdyn/linalg/parallel.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+void transpose_times(const SparseMatrix& M, const double* x, double* y) {
+  const int n = static_cast<int>(M.cols());
+  const int* outer = M.outerIndexPtr();
+  const int* count = M.innerNonZeroPtr();  // null when compressed
+  const int* inner = M.innerIndexPtr();
+  const double* v = M.valuePtr();
+#pragma omp parallel for schedule(static) if (M.nonZeros() >= kParallelWork)
+  for (int i = 0; i < n; ++i) {
+    const int end = count ? outer[i] + count[i] : outer[i + 1];
+    double sum = 0.0;
+    for (int k = outer[i]; k < end; ++k) sum += v[k] * x[inner[k]];
+    y[i] = sum;
+  }
+}
+
+Eigen::VectorXd transpose_times(const SparseMatrix& M, const Eigen::VectorXd& x) {
+  if (x.size() != M.rows())
+    throw InputError("transpose_times: a vector of " + std::to_string(x.size()) + " entries for a matrix of " +
+                     std::to_string(M.rows()) + " rows");
+  Eigen::VectorXd y(M.cols());
+  transpose_times(M, x.data(), y.data());
+  return y;
+}
+
+Eigen::VectorXd symmetric_times(const SparseMatrix& S, const Eigen::VectorXd& x) {
+  if (S.rows() != S.cols()) throw InputError("symmetric_times: the matrix is not square");
+  return transpose_times(S, x);
+}
+
+double dot(long n, const double* x, const double* y) {
+  using Block = Eigen::Map<const Eigen::VectorXd>;
+  const int blocks = block_count(n);
+  std::vector<double> sums(blocks);
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+  for (int b = 0; b < blocks; ++b) {
+    const long begin = long(b) * kBlock, length = std::min<long>(kBlock, n - begin);
+    sums[b] = Block(x + begin, length).dot(Block(y + begin, length));
+  }
+  double sum = 0.0;
+  for (double s : sums) sum += s;
+  return sum;
+}
+
+double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  if (x.size() != y.size())
+    throw InputError("dot: vectors of " + std::to_string(x.size()) + " and " + std::to_string(y.size()) + " entries");
+  return dot(x.size(), x.data(), y.data());
+}
+
+SparseMatrix transposed(const SparseMatrix& M) {
+  SparseMatrix T = M.transpose();
+  T.makeCompressed();
+  return T;
+}
+
+}  // namespace cdyn

@@ -1,0 +1,57 @@
+// linalg/parallel.hpp — the products and sums of a time step that run on several
+// threads, written so that their results do not depend on the number of threads, bit
+// for bit (the thread count: linalg/threads.hpp).
+//
+// Two rules make that so.
+//  1. Every entry of a result is computed by one thread, with the operations in the
+//     order they have on one thread.  A product with a sparse matrix is therefore a
+//     gather, one dot product per entry of the result over a compressed column: y = Mᵀx
+//     reads column i of M for y_i, and no two threads write the same entry.  S x for a
+//     symmetric S is Sᵀx (its columns are its rows); B x for a rectangular B is (Bᵀ)ᵀx
+//     with Bᵀ kept in compressed columns beside B (transposed()).  Eigen's own M x on
+//     column storage is a scatter, y_i += M_ij x_j column after column, which threads
+//     could only split with a copy of y each and a sum of the copies.  The gather adds
+//     y_i's terms in the same order (j increasing): (Bᵀ)ᵀx is Eigen's B x bit for bit,
+//     and Sᵀx is S x when S is symmetric to the last bit, as the kernel's mass and step
+//     matrices are made (mass/mixed.cpp, qp/condensation.cpp).
+//  2. A sum over a vector (a dot product, a norm) is cut into blocks of kBlock entries —
+//     a length that does not depend on the thread count — each block summed by one
+//     thread, and the block sums added in order by one thread.
+// Loops with less than kParallelWork entries to read stay on one thread, since a
+// parallel region costs microseconds; by the two rules that changes no result either.
+// The sparse triangular solves of a Cholesky factor are not among these loops: each
+// unknown waits for the ones before it.  CHOLMOD's supernodes give the BLAS dense blocks,
+// which it threads by itself, with its own thread count and its own round-off
+// (linalg/threads.hpp).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "cdyn/base/sparse.hpp"
+
+namespace cdyn {
+
+// The block length of rule 2 (8 KiB of doubles: a block is worth a thread's start).
+constexpr int kBlock = 1024;
+// Below this many entries read, a loop runs on one thread.  Eigen's threshold for its
+// own threaded sparse products, found on 2D and 3D Poisson matrices.
+constexpr long kParallelWork = 20000;
+
+// The number of blocks of kBlock entries (the last one shorter) that cover n entries.
+inline int block_count(long n) { return static_cast<int>((n + kBlock - 1) / kBlock); }
+
+// y = Mᵀ x (x of M.rows() entries, y of M.cols()): one dot product per column of M.
+void transpose_times(const SparseMatrix& M, const double* x, double* y);
+Eigen::VectorXd transpose_times(const SparseMatrix& M, const Eigen::VectorXd& x);
+
+// S x for a symmetric S stored whole (both triangles): Sᵀx.
+Eigen::VectorXd symmetric_times(const SparseMatrix& S, const Eigen::VectorXd& x);
+
+// xᵀy, summed by blocks (rule 2).
+double dot(long n, const double* x, const double* y);
+double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y);
+
+// Mᵀ in compressed columns: what B x is computed from (rule 1).
+SparseMatrix transposed(const SparseMatrix& M);
+
+}  // namespace cdyn
