@@ -112,7 +112,8 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
     // λ = S X − r0: the inner reaction is S X − r, r = r0 − s σ on the slipping unknowns
     Eigen::VectorXd reaction = last.reaction + (qp.r - r0);
     const Eigen::VectorXd s_new = friction_thresholds(f, reaction);
-    const std::vector<Tangential> next = sets_of(f, last.X, reaction, s_new, D);
+    // Newton's step for the Tresca problem of the current thresholds s
+    std::vector<Tangential> next = sets_of(f, last.X, reaction, s, D);
     result.qp = last;
     result.qp.reaction = std::move(reaction);
     result.threshold = s_new;
@@ -122,12 +123,20 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
     sets_final = next;
     if (result.converged) break;
     if (it >= max_iterations) {
-      detail = same_sets(next, sets) ? "the sets repeat above tol: the inner solver's tol is too loose"
-                                     : "maximum number of outer iterations reached";
+      detail = "maximum number of outer iterations reached";
       break;
     }
+    if (same_sets(next, sets)) {
+      // The Tresca problem of s is solved: Coulomb's fixed point takes s = μ λ_N
+      // (nothing left to do for Tresca: the residual is the inner solver's).
+      if ((s_new - s).lpNorm<Eigen::Infinity>() == 0.0) {
+        detail = "the sets and thresholds repeat above tol: the inner solver's tol is too loose";
+        break;
+      }
+      s = s_new;
+      next = sets_of(f, result.qp.X, result.qp.reaction, s, D);
+    }
     sets = next;
-    s = s_new;
   }
   qp.r = r0;
   qp.lower = lower0;
