@@ -1,5 +1,6 @@
 // friction_ssn.cpp — the semismooth Newton (active set) method for the frictional step
 // problem, around a bound-QP step solver (qp/friction_solvers.hpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -79,9 +80,8 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   const Eigen::VectorXd D = scaling_diagonal(qp);
   const int m = static_cast<int>(f.contacts.size());
 
-  // Start: the previous step's sets and thresholds; cold, every node sticking under
-  // Tresca (bonded) and slipping freely under Coulomb (s = 0: the frictionless step,
-  // whose λ_N gives the first thresholds).
+  // Start: the previous step's sets and thresholds; cold, every node sticking (the
+  // bonded step, whose λ_N gives Coulomb's first thresholds).
   std::vector<Tangential> sets(m);
   Eigen::VectorXd s(m);
   const QPResult* inner_warm = nullptr;
@@ -90,17 +90,18 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   for (int k = 0; k < m; ++k) {
     const FrictionContact& c = f.contacts[k];
     s[k] = !c.coulomb ? c.threshold : warm ? warm_start->threshold[k] : 0.0;
-    if (warm ? !warm_start->stick[k] : c.coulomb) {
+    if (warm && !warm_start->stick[k]) {
       sets[k].stick = false;
-      for (int t : c.tangential) sets[k].sigma.push_back(warm ? warm_start->direction[t] : 0.0);
+      for (int t : c.tangential) sets[k].sigma.push_back(warm_start->direction[t]);
     }
   }
   if (warm) inner_warm = &warm_start->qp;
 
   FrictionResult result;
   QPResult last;
-  int inner_iterations = 0;
+  int inner_iterations = 0, fallbacks = 0;
   std::vector<Tangential> sets_final;
+  std::vector<std::vector<Tangential>> visited;  // the sets tried for the current s
   std::string detail;
   int it = 0;
   for (;;) {
@@ -112,29 +113,54 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
     // λ = S X − r0: the inner reaction is S X − r, r = r0 − s σ on the slipping unknowns
     Eigen::VectorXd reaction = last.reaction + (qp.r - r0);
     const Eigen::VectorXd s_new = friction_thresholds(f, reaction);
-    // Newton's step for the Tresca problem of the current thresholds s
-    std::vector<Tangential> next = sets_of(f, last.X, reaction, s, D);
     result.qp = last;
     result.qp.reaction = std::move(reaction);
     result.threshold = s_new;
     qp.r = r0;  // (the residual's scale is that of (FQP); apply_sets rewrites r)
+    qp.lower = lower0;
+    qp.upper = upper0;
     result.residual = friction_residual(qp, f, last.X, result.qp.reaction, s_new, D);
     result.converged = result.residual <= options.tol;
-    sets_final = next;
+    sets_final = sets_of(f, last.X, result.qp.reaction, s_new, D);
     if (result.converged) break;
     if (it >= max_iterations) {
       detail = "maximum number of outer iterations reached";
       break;
     }
-    if (same_sets(next, sets)) {
-      // The Tresca problem of s is solved: Coulomb's fixed point takes s = μ λ_N
-      // (nothing left to do for Tresca: the residual is the inner solver's).
-      if ((s_new - s).lpNorm<Eigen::Infinity>() == 0.0) {
+    // Newton's step for the Tresca problem of the current thresholds s ...
+    std::vector<Tangential> next = sets_of(f, last.X, result.qp.reaction, s, D);
+    visited.push_back(sets);
+    const bool cold_start = it == 1 && !warm;
+    if (same_sets(next, sets) || cold_start) {
+      // ... solved (or the bonded start): Coulomb's fixed point takes s = μ λ_N (for
+      // Tresca nothing is left to do: the residual is the inner solver's)
+      if (!cold_start && (s_new - s).lpNorm<Eigen::Infinity>() == 0.0) {
         detail = "the sets and thresholds repeat above tol: the inner solver's tol is too loose";
         break;
       }
       s = s_new;
-      next = sets_of(f, result.qp.X, result.qp.reaction, s, D);
+      next = sets_of(f, last.X, result.qp.reaction, s, D);
+      visited.clear();
+    } else if (std::any_of(visited.begin(), visited.end(), [&](const auto& v) { return same_sets(v, next); })) {
+      // ... cycling (Newton's method for a nonsmooth equation converges only locally):
+      // the Tresca problem of s by projected Gauss–Seidel, globally convergent, whose
+      // solution gives the sets of the next Newton step.
+      if (qp.saddle) {
+        detail = "the active sets cycle, and the saddle form has no projected Gauss-Seidel fallback";
+        break;
+      }
+      FrictionConditions tresca = f;
+      for (int k = 0; k < m; ++k) {
+        tresca.contacts[k].coulomb = false;
+        tresca.contacts[k].threshold = s[k];
+      }
+      FrictionOptions pgs = options;
+      pgs.throw_on_failure = false;
+      const FrictionResult g = solve_friction_pgs(qp, tresca, pgs, &result);
+      ++fallbacks;
+      inner_iterations += g.qp.iterations;
+      next = sets_of(f, g.qp.X, g.qp.reaction, s, D);
+      visited.clear();
     }
     sets = next;
   }
@@ -158,7 +184,8 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   if (!result.converged && options.throw_on_failure)
     throw NumericalError("friction (semismooth Newton around " + inner.name() + "): did not converge: residual " +
                          to_text(result.residual) + " > tol " + to_text(options.tol) + " after " +
-                         std::to_string(it) + " outer iterations (" + detail + ")");
+                         std::to_string(it) + " outer iterations, " + std::to_string(fallbacks) +
+                         " projected Gauss-Seidel fallbacks (" + detail + ")");
   return result;
 }
 
