@@ -227,7 +227,7 @@ int cmd_run(const RunOptions& opt) {
   auto write_fields = [&](int step) {
     const auto tf = Clock::now();
     const Eigen::VectorXd U_full = p.full(s.U);
-    fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy));
+    fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy, &s));
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
