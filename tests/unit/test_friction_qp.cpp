@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -148,7 +149,7 @@ std::vector<std::string> methods() {
 
 // (i) Tresca: 40 random problems, thresholds from 0.05 (mostly slip) to 2 (mostly stick).
 TEST(FrictionQP, TrescaMatchesEnumeration) {
-  int sticks = 0, slips = 0;
+  int sticks = 0, slips = 0, fallbacks = 0;
   for (unsigned seed = 0; seed < 40; ++seed) {
     Problem p = random_problem(seed, false, seed % 4 == 0 ? 0.05 : seed % 4 == 1 ? 0.2 : seed % 4 == 2 ? 0.6 : 2.0);
     const Eigen::VectorXd X = enumerate(p);
@@ -156,6 +157,7 @@ TEST(FrictionQP, TrescaMatchesEnumeration) {
       const FrictionResult res = solve(m, p);
       EXPECT_TRUE(res.converged) << m << " seed " << seed;
       EXPECT_LT((res.qp.X - X).lpNorm<Eigen::Infinity>(), 1e-9) << m << " seed " << seed;
+      fallbacks += res.fallbacks;
       if (m == "pdas")
         for (ContactStatus s : res.status) {
           if (s == ContactStatus::Stick) ++sticks;
@@ -163,6 +165,7 @@ TEST(FrictionQP, TrescaMatchesEnumeration) {
         }
     }
   }
+  std::printf("Tresca: %d projected Gauss-Seidel fallbacks\n", fallbacks);
   // both regimes are exercised
   EXPECT_GT(sticks, 10);
   EXPECT_GT(slips, 10);
@@ -170,6 +173,7 @@ TEST(FrictionQP, TrescaMatchesEnumeration) {
 
 // (ii) Coulomb, μ = 0.1 … 0.5 (small enough for a unique solution on these problems).
 TEST(FrictionQP, CoulombMatchesEnumeration) {
+  int fallbacks = 0;
   for (unsigned seed = 100; seed < 130; ++seed) {
     Problem p = random_problem(seed, true, 0.1 + 0.1 * (seed % 5));
     const Eigen::VectorXd X = enumerate(p);
@@ -177,8 +181,10 @@ TEST(FrictionQP, CoulombMatchesEnumeration) {
       const FrictionResult res = solve(m, p);
       EXPECT_TRUE(res.converged) << m << " seed " << seed;
       EXPECT_LT((res.qp.X - X).lpNorm<Eigen::Infinity>(), 1e-9) << m << " seed " << seed;
+      fallbacks += res.fallbacks;
     }
   }
+  std::printf("Coulomb: %d projected Gauss-Seidel fallbacks\n", fallbacks);
 }
 
 // (iii) s = 0: the frictionless QP; s = ∞: the bonded QP (tangential unknowns fixed).

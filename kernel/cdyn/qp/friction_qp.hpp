@@ -64,6 +64,7 @@ struct FrictionResult {
   Eigen::VectorXd threshold;           // s_i the solution satisfies (Coulomb: μ λ_N)
   double residual = 0.0;               // friction_residual
   bool converged = false;
+  int fallbacks = 0;                   // semismooth Newton: projected Gauss–Seidel solves after a cycle
   // The tangential sets of the solution, a warm start for the next step: per contact,
   // sticking or not, and the slip direction σ = y/|y| on the tangential unknowns of the
   // slipping ones (0 elsewhere; size n).

@@ -177,6 +177,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   }
   result.status = contact_status(qp, f, result.qp.X, result.qp.reaction);
   result.qp.iterations = inner_iterations;
+  result.fallbacks = fallbacks;
   result.qp.kkt_residual = result.residual;
   result.qp.converged = result.converged;
   result.qp.active = active_set(qp, result.qp.X, result.qp.reaction, D);
