@@ -12,7 +12,7 @@ the plane y = 0; backward Euler, nearly quasi-static):
     normal force; the friction residual's tol 1e-10 is in units of X, a force error
     up to diag(S)·tol·|X| ≈ 1e-4 of it; asserted 1e-6), and the momentum grows like
     m a t with a = g (sin θ − μ cos θ): from step 10 on measured max |px − m a t| =
-    9e-10 of m a T, asserted 1e-6 (at step 1, 3.7e-5: the plate settles on the plane
+    1.5e-9 of m a T, asserted 1e-6 (at step 1, 3.7e-5: the plate settles on the plane
     after its release, its normal force first below m g cos θ, then the momentum of
     that settling is given back);
   - the energy: J contains the gravity's potential, so J + W_f is J0 minus backward

@@ -11,7 +11,9 @@
 //  (iv)  the block sticks when tan θ ≤ μ (no slip at all) and slides otherwise, its
 //        momentum growing like m G (sin θ − μ cos θ) t;
 //  (v)   every step solver gives the same frictional steps; friction is refused where
-//        it is not implemented (3D, schemes without it).
+//        it is not implemented (3D, schemes without it);
+//  (vi)  the semismooth Newton method's fallback when its sets cycle, and a restart
+//        from the scheme's memory.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -313,4 +315,32 @@ TEST(Friction, CyclingSetsFallBackToProjectedGaussSeidel) {
   // both to friction_residual ≤ 1e-12 |X| (|X| > |D⁻¹r| here), an error in X up to that times the
   // conditioning of D^-½ S D^-½ (docs/qp.md §2): measured 1.7e-10 |X|
   EXPECT_LE((ssn.qp.X - pgs.qp.X).lpNorm<Eigen::Infinity>(), 1e-9 * scale);
+}
+
+// A frictional run goes on from its memory (the sets, thresholds and slip directions of
+// the last step, schemes/scheme_memory.hpp) as if never stopped: what `cdyn run
+// --resume` relies on.
+TEST(Friction, RestoredSchemeRepeatsTheRun) {
+  const Mesh mesh = unit_square_mesh(4);
+  const ConstrainedProblem p = build_elastic_contact(mesh, with_friction(block(mesh, 0.3), FrictionLaw::Coulomb, 0.3));
+  for (const std::string name : {"pdas", "pgs"}) {
+    auto solver_a = make_step_solver(name), solver_b = make_step_solver(name);
+    auto a = make_time_scheme("backward_euler", p, *solver_a, 0.01);
+    auto b = make_time_scheme("backward_euler", p, *solver_b, 0.01);
+    State s;
+    s.U = Eigen::VectorXd::Zero(p.n_free());
+    s.V = initial_velocity(p, thrown(p));
+    a->initialize(s);
+    for (int k = 0; k < 30; ++k) a->step(s);
+    const SchemeMemory m = a->memory();
+    a->restore(m);
+    State s_b = s;
+    b->restore(m);
+    for (int k = 0; k < 30; ++k) {
+      a->step(s);
+      b->step(s_b);
+    }
+    EXPECT_TRUE(s.U == s_b.U && s.V == s_b.V) << name;
+    EXPECT_EQ(s.contact_status, s_b.contact_status) << name;
+  }
 }

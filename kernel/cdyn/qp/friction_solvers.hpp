@@ -12,9 +12,13 @@
 //    for them), and the sets are updated from y = d − λ_T/D:  stick where |y| ≤ s/D,
 //    slip with σ = y/|y| elsewhere — Newton's step on d = shrink(d − λ_T/D, s/D).  So
 //    the outer loop around an existing bound-QP solver *is* a semismooth Newton method
-//    for the tangential part.  Coulomb: s = μ λ_N is updated from the last iterate's
-//    normal reaction in the same loop (HSW's fixed point on the threshold inside the
-//    active set iteration).  It stops when friction_residual ≤ tol.
+//    for the tangential part.  Coulomb: the sets are iterated with s fixed until they
+//    repeat, then s = μ λ_N of that Tresca solution (a fixed point on the threshold;
+//    updating s at every set update cycled, docs/friction.md).  A cold start sticks
+//    everywhere (the bonded step).  Newton's method for a nonsmooth equation converges
+//    only locally: when a set comes back for the same s, the Tresca problem of s is
+//    solved by solve_friction_pgs below (explicit S) and its sets start the next Newton
+//    step.  It stops when friction_residual ≤ tol.
 //
 //  - solve_friction_pgs: projected Gauss–Seidel on the unknowns (the nodal form of the
 //    Moreau–Jean NSCD method, M. Jean, CMAME 177 (1999)): each unknown in turn set to
