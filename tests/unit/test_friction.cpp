@@ -344,3 +344,27 @@ TEST(Friction, RestoredSchemeRepeatsTheRun) {
     EXPECT_EQ(s.contact_status, s_b.contact_status) << name;
   }
 }
+
+// The nodal Tresca threshold is the traction bound's share of Γ_C, s_a = ∫ s φ_a: its
+// sum is ∫_{Γ_C} s (exact for s affine along the side: P1 traces), the two end vertices
+// get half an interior one's for a constant s; Coulomb's μ is the value at the vertex.
+TEST(Friction, NodalThresholdsAndCoefficients) {
+  const Mesh mesh = unit_square_mesh(4);
+  ElasticContactData d = with_friction(block(mesh, 0.0), FrictionLaw::Tresca, 0.0);
+  d.obstacles[0].friction.threshold = [](const Point& x, double) { return 2.0 + x.x; };
+  const ConstrainedProblem p = build_elastic_contact(mesh, d);
+  double sum = 0.0;
+  for (const FrictionNode& node : p.friction) sum += node.threshold;
+  EXPECT_NEAR(sum, 2.5, 1e-13);  // ∫₀¹ (2 + x) dx
+  d.obstacles[0].friction.threshold = constant(3.0);
+  const ConstrainedProblem q = build_elastic_contact(mesh, d);
+  for (const FrictionNode& node : q.friction) {
+    const double x = mesh.vertices[q.contact_nodes[node.node].vertex].x;
+    EXPECT_NEAR(node.threshold, (x == 0.0 || x == 1.0) ? 3.0 / 8 : 3.0 / 4, 1e-14) << x;
+  }
+  ElasticContactData c = with_friction(block(mesh, 0.0), FrictionLaw::Coulomb, 0.0);
+  c.obstacles[0].friction.mu = [](const Point& x, double) { return 0.1 + x.x; };
+  const ConstrainedProblem r = build_elastic_contact(mesh, c);
+  for (const FrictionNode& node : r.friction)
+    EXPECT_EQ(node.mu, 0.1 + mesh.vertices[r.contact_nodes[node.node].vertex].x);
+}
