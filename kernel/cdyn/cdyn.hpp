@@ -58,6 +58,7 @@
 #include "cdyn/qp/friction_qp.hpp"
 #include "cdyn/qp/friction_solvers.hpp"
 #ifdef CDYN_WITH_IPOPT
+#include "cdyn/qp/friction_ipopt.hpp"
 #include "cdyn/qp/ipopt.hpp"
 #endif
 #include "cdyn/qp/kkt.hpp"

@@ -4,8 +4,8 @@
 //  (i)   Tresca: every combination of {normal free, normal on its bound} × {stick,
 //        slip +, slip −} per node gives a linear system; the one whose solution meets
 //        the sign conditions is THE solution (the problem is strictly convex).  The
-//        semismooth Newton method around pdas, pgs, ipopt and nlopt, and pgs on (FQP)
-//        itself, must find it;
+//        semismooth Newton method around pdas, pgs, ipopt and nlopt, pgs on (FQP)
+//        itself and Ipopt on split slip variables must find it;
 //  (ii)  Coulomb (s = μ λ_N): the same enumeration with the slip rows
 //        (S X − r)_T + σ μ (S X − r)_N = 0, linear in X;
 //  (iii) s = 0 is the frictionless QP, s = ∞ the bonded one (X_T = X̂_T), both to
@@ -21,6 +21,9 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/qp/friction_solvers.hpp"
+#ifdef CDYN_WITH_IPOPT
+#include "cdyn/qp/friction_ipopt.hpp"
+#endif
 #include "cdyn/qp/kkt.hpp"
 
 using namespace cdyn;
@@ -133,6 +136,9 @@ FrictionResult solve(const std::string& method, Problem& p, double tol = 1e-12) 
   FrictionOptions o;
   o.tol = tol;
   if (method == "friction-pgs") return solve_friction_pgs(p.qp, p.f, o);
+#ifdef CDYN_WITH_IPOPT
+  if (method == "friction-ipopt") return solve_friction_ipopt(p.qp, p.f, o);
+#endif
   QPOptions qo;
   qo.tol = 0.1 * tol;
   auto inner = make_step_solver(method, qo);
@@ -142,6 +148,9 @@ FrictionResult solve(const std::string& method, Problem& p, double tol = 1e-12) 
 std::vector<std::string> methods() {
   std::vector<std::string> m = step_solver_names();
   m.push_back("friction-pgs");
+#ifdef CDYN_WITH_IPOPT
+  m.push_back("friction-ipopt");
+#endif
   return m;
 }
 

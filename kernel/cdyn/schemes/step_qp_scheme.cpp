@@ -7,6 +7,9 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
 #include "cdyn/qp/friction_solvers.hpp"
+#ifdef CDYN_WITH_IPOPT
+#include "cdyn/qp/friction_ipopt.hpp"
+#endif
 
 namespace cdyn {
 
@@ -184,8 +187,14 @@ void StepQPScheme::solve_with_friction(State& s, StepStats& stats) {
   FrictionOptions options;
   options.tol = friction_tol_;
   const FrictionResult* warm = has_friction_last_ ? &friction_last_ : nullptr;
-  friction_last_ = solver_.name() == "pgs" ? solve_friction_pgs(qp_, friction_, options, warm)
-                                           : solve_friction_ssn(qp_, friction_, solver_, options, warm);
+  if (solver_.name() == "pgs")
+    friction_last_ = solve_friction_pgs(qp_, friction_, options, warm);
+#ifdef CDYN_WITH_IPOPT
+  else if (solver_.name() == "ipopt" && !qp_.saddle)
+    friction_last_ = solve_friction_ipopt(qp_, friction_, options, warm);
+#endif
+  else
+    friction_last_ = solve_friction_ssn(qp_, friction_, solver_, options, warm);
   has_friction_last_ = true;
   const Eigen::VectorXd& X = friction_last_.qp.X;
   stats.friction_work = slip_factor_ * friction_work(friction_, X, friction_last_.threshold);

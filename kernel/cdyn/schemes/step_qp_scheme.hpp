@@ -21,7 +21,8 @@
 // the frictional problem (FQP) of qp/friction_qp.hpp with the reference X̂ = Uⁿ: its
 // slip X_T − Uⁿ_T is the step's tangential increment divided by s (s = 1 for the schemes
 // that take friction: backward Euler and midpoint_end, X = U^{n+1}).  It is solved by
-// projected Gauss–Seidel when the step solver is pgs, else by the semismooth Newton
+// projected Gauss–Seidel when the step solver is pgs, by Ipopt on split slip variables
+// when it is ipopt (explicit S; qp/friction_ipopt.hpp), else by the semismooth Newton
 // method around the step solver (qp/friction_solvers.hpp), to the scheme's tol.
 #pragma once
 
