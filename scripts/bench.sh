@@ -42,8 +42,12 @@ echo "== (g) the published table: extrapolated, reconstructed and discrete_gradi
 $PY "$ROOT/bench/bench_published_table.py" "$BUILD/apps/cdyn" "$OUT/published"
 echo "== (h) contact in every regime: impact, resting, chatter, disk, beam (P1+/P0 midpoint, P1/P1 backward Euler), about 4 minutes"
 $PY "$ROOT/bench/bench_regimes.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/regimes" --repeat 2
+echo "== (j) friction: the frictional contact step against the frictionless one, disk and ramp, backward Euler"
+$PY "$ROOT/bench/bench_friction.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/friction" --repeat 2
 echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
 echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 8 minutes"
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
+echo "== (k) three dimensions: the cube's contact step against its unknowns, the factor and the CG path"
+$PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24,32
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"

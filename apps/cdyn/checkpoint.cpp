@@ -71,7 +71,7 @@ ImpactMonitor::Memory impact_memory(const std::vector<double>& v) {
 std::vector<double> totals_values(const RunTotals& t) {
   return {t.qp_iterations, t.qp_seconds,           t.energy_iterations, t.max_kkt,      t.max_reconstruction_kkt,
           t.max_violation, double(t.max_active), t.dissipated,        t.wall_seconds, t.fields_seconds,
-          t.data_work};
+          t.data_work,     t.friction_work};
 }
 
 RunTotals totals(const std::vector<double>& v) {
@@ -79,6 +79,7 @@ RunTotals totals(const std::vector<double>& v) {
   t.qp_iterations = v[0], t.qp_seconds = v[1], t.energy_iterations = v[2], t.max_kkt = v[3];
   t.max_reconstruction_kkt = v[4], t.max_violation = v[5], t.max_active = static_cast<int>(v[6]);
   t.dissipated = v[7], t.wall_seconds = v[8], t.fields_seconds = v[9], t.data_work = v[10];
+  t.friction_work = v.size() > 11 ? v[11] : 0.0;  // (checkpoints written before friction have 11)
   return t;
 }
 
@@ -152,7 +153,10 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::strin
   c.E_initial = {E[0], E[1]};
   const std::vector<double>& drift = numbers(r, "drift", 2, file);
   c.drift_abs = drift[0], c.drift_half_sum = drift[1];
-  c.totals = totals(numbers(r, "totals", 11, file));
+  const std::vector<double>& t = numbers(r, "totals", 0, file);
+  if (t.size() != 11 && t.size() != 12)
+    throw InputError(file.string() + ": not a valid checkpoint: record 'totals' of the wrong size");
+  c.totals = totals(t);
   for (auto [name, mark] :
        {std::pair{"journal.history", &c.history.history}, std::pair{"journal.contact", &c.history.contact}}) {
     const std::vector<std::int64_t>& m = integers(name, 2);

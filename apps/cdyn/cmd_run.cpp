@@ -211,9 +211,11 @@ int cmd_run(const RunOptions& opt) {
   };
   auto record = [&](int step, const StepStats& st, double step_seconds, const Energy& E) {
     E_final = E.total();
-    drift.observe(E, totals.data_work, totals.dissipated);
+    // J + W_d + W_f − J0 − W: friction and damping take energy, the data give it
+    drift.observe(E, totals.data_work, totals.dissipated + totals.friction_work);
     force_xy = reaction_xy(p, s.reaction);
-    history.record(step, s, st, step_seconds, E, {totals.dissipated, totals.data_work}, rate, force_xy);
+    history.record(step, s, st, step_seconds, E, {totals.dissipated, totals.data_work, totals.friction_work}, rate,
+                   force_xy);
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
@@ -225,7 +227,7 @@ int cmd_run(const RunOptions& opt) {
   auto write_fields = [&](int step) {
     const auto tf = Clock::now();
     const Eigen::VectorXd U_full = p.full(s.U);
-    fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy));
+    fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy, &s));
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();

@@ -5,15 +5,20 @@ namespace cdyn::app {
 
 ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file,
                                const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
-    : mesh_(*sim.mesh), contact_(sim.problem), csv_(file, journal, resume) {
+    : mesh_(*sim.mesh), problem_(sim.problem), contact_(sim.problem), csv_(file, journal, resume) {
+  friction_ = !problem_.friction.empty();
+  friction_of_.assign(mesh_.n_vertices(), -1);
+  for (std::size_t k = 0; k < problem_.friction.size(); ++k)
+    friction_of_[problem_.contact_nodes[problem_.friction[k].node].vertex] = static_cast<int>(k);
   if (csv_.resumed()) return;
-  csv_.rows() << (mesh_.dim == 3 ? "step,t,vertex,x,y,z,s,gap,force,pressure\n"
-                                  : "step,t,vertex,x,y,s,gap,force,pressure\n");
+  csv_.rows() << (mesh_.dim == 3 ? "step,t,vertex,x,y,z,s,gap,force,pressure" : "step,t,vertex,x,y,s,gap,force,pressure")
+              << (friction_ ? ",tangential_force,slip,status\n" : "\n");
   csv_.end_rows();
 }
 
-double ContactHistory::record(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
-                              bool write) {
+double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U_full,
+                              const Eigen::VectorXd& reaction_xy, bool write) {
+  const double t = s.t;
   double total = 0.0;
   std::ostream& csv = csv_.rows();
   for (const ContactPressure::Vertex& c : contact_.vertices()) {
@@ -24,7 +29,20 @@ double ContactHistory::record(int step, double t, const Eigen::VectorXd& U_full,
     csv << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << ",";
     if (mesh_.dim == 3) csv << a.z << ",";
     csv << c.s << ","
-        << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0) << "\n";
+        << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0);
+    if (friction_) {
+      const int k = friction_of_[c.vertex];
+      if (k < 0) {
+        csv << ",0,0,-1";
+      } else if (s.slip.size() == 0) {  // before the first step
+        csv << ",0,0,0";
+      } else {
+        const int tangential = problem_.friction[k].tangential[0];
+        csv << "," << (s.reaction.size() ? s.reaction[tangential] : 0.0) << "," << s.slip[k] << ","
+            << s.contact_status[k];
+      }
+    }
+    csv << "\n";
   }
   if (write) csv_.end_rows();
   return total;

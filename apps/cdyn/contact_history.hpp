@@ -28,7 +28,10 @@ class ContactHistory {
   // The total normal contact force Σ F_N(a) of the state (U_full all dofs of W^h,
   // reaction_xy the reaction in Cartesian free components, empty before step 1); writes
   // the rows when `write` is true.
-  double record(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy, bool write);
+  // With friction the rows add the tangential force (the reaction on the vertex's
+  // tangential unknown, along t = (−n_y, n_x)), the slip of the last step along t and
+  // the status (0 open, 1 stick, 2 slip; −1 at a vertex without friction).
+  double record(int step, const State& s, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy, bool write);
 
   // Gives the file its name (it is written under a temporary one until then: a run
   // that dies leaves no contact.csv that looks complete, atomic_file.hpp).
@@ -37,8 +40,11 @@ class ContactHistory {
 
  private:
   const Mesh& mesh_;
+  const ConstrainedProblem& problem_;
   ContactPressure contact_;
   CsvOutput csv_;
+  std::vector<int> friction_of_;  // per vertex of the mesh, its friction node or −1
+  bool friction_ = false;
 };
 
 // summary.json's "impact" entry.

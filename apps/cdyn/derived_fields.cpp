@@ -30,7 +30,8 @@ DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
   if (sim.components > 1 && sim.has_obstacle) contact_.emplace(sim.problem);
 }
 
-ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy) const {
+ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
+                                     const State* state) const {
   ExtraFields out;
   const Mesh& mesh = *sim_.mesh;
   if (sim_.components > 1 && sim_.spec.output.stress) {
@@ -45,6 +46,21 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
       for (const ContactPressure::Vertex& a : contact_->vertices())
         pressure.values[a.vertex] = contact_->pressure(reaction_xy, a);
     out.point.push_back(std::move(pressure));
+  }
+  const ConstrainedProblem& p = sim_.problem;
+  if (!p.friction.empty()) {
+    FieldArray force{"tangential_force", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
+    FieldArray slip{"slip", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
+    FieldArray status{"contact_status", 1, std::vector<double>(mesh.n_vertices(), -1.0)};
+    for (std::size_t k = 0; k < p.friction.size(); ++k) {
+      const int v = p.contact_nodes[p.friction[k].node].vertex, t = p.friction[k].tangential[0];
+      status.values[v] = 0.0;
+      if (!state || state->slip.size() == 0) continue;  // before the first step
+      force.values[v] = state->reaction[t];
+      slip.values[v] = state->slip[k];
+      status.values[v] = state->contact_status[k];
+    }
+    for (FieldArray* a : {&force, &slip, &status}) out.point.push_back(std::move(*a));
   }
   if (sim_.components > 1 && !mesh.cell_region.empty())
     out.cell.push_back({"region", 1, std::vector<double>(mesh.cell_region.begin(), mesh.cell_region.end())});

@@ -7,6 +7,10 @@
 //   - elasticity against a plane: the contact pressure p(a) = F_N(a) / w(a) at the
 //     constrained vertices of Γ_C (post/contact_pressure.hpp, contact.csv's `pressure`),
 //     0 at every other vertex;
+//   - elasticity with friction (problems/friction.hpp): the tangential force (the
+//     reaction on the tangential unknown, along t = (−n_y, n_x)), the last step's slip
+//     along t and the status (0 open, 1 stick, 2 slip) at the friction vertices, as
+//     contact.csv has them; 0, 0 and −1 at every other vertex;
 //   - elasticity on a mesh with regions (gmsh physical surfaces, where materials are
 //     given): the region index of each cell.
 // The scalar models get none of them: their files are those of cdyn::io alone.
@@ -28,7 +32,9 @@ class DerivedFields {
 
   // The arrays of the state U_full (all dofs of W^h) with the step's reaction in (x, y)
   // (post/contact_force.hpp's reaction_xy; empty: no reaction yet).
-  ExtraFields operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy) const;
+  // `state`: the friction arrays' source (its reaction, slip and status).
+  ExtraFields operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
+                         const State* state = nullptr) const;
 
  private:
   const Simulation& sim_;

@@ -54,6 +54,7 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
     : sim_(sim),
       damped_(sim.spec.time.parameters.damping.active()),
       data_in_t_(has_data_in_t(sim.problem)),
+      friction_(!sim.problem.friction.empty()),
       csv_(out / "history.csv", journal_dir.empty() ? journal_dir : journal_dir / "history.csv",
            mark(resume, &HistoryMemory::history)) {
   if (resume) {
@@ -74,6 +75,7 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
     }
   }
   if (data_in_t_) csv << ",data_work";
+  if (friction_) csv << ",friction_work";
   for (const auto& pr : sim.probes)
     for (const std::string& c : probe_columns(sim, pr)) csv << "," << c;
   csv << "\n";
@@ -92,7 +94,7 @@ void History::record(int step, const State& s, const StepStats& st, double step_
   const Eigen::VectorXd U_full = p.full(s.U);
   if (momentum_) {
     const bool write = step % sim_.contact_every == 0 || step == sim_.n_steps;
-    const double force = contact_ ? contact_->record(step, s.t, U_full, reaction_xy, write) : 0.0;
+    const double force = contact_ ? contact_->record(step, s, U_full, reaction_xy, write) : 0.0;
     const Point P = (*momentum_)(s.V);
     csv << "," << force << "," << P.x << "," << P.y;
     if (sim_.components == 3) csv << "," << P.z;
@@ -104,6 +106,7 @@ void History::record(int step, const State& s, const StepStats& st, double step_
     }
   }
   if (data_in_t_) csv << "," << works.data;
+  if (friction_) csv << "," << works.friction;
   for (const auto& pr : sim_.probes)
     for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv << "," << v;
   csv << "\n";

@@ -38,6 +38,7 @@ class History {
   struct Works {
     double dissipated = 0.0;  // W_d, the Rayleigh damping's
     double data = 0.0;        // W, the data in t's (problems/data_work.hpp)
+    double friction = 0.0;    // W_f, the friction forces' (problems/friction.hpp)
   };
 
   // The row of a step.  step_seconds: the wall time of the scheme's step; rate: the
@@ -62,6 +63,7 @@ class History {
   const Simulation& sim_;
   bool damped_;    // the column `dissipated`
   bool data_in_t_;  // the column `data_work`
+  bool friction_;   // the column `friction_work`, and contact.csv's friction columns
   CsvOutput csv_;
   std::optional<LinearMomentum> momentum_;
   std::optional<ContactHistory> contact_;

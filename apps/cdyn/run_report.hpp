@@ -54,6 +54,7 @@ struct RunTotals {
   int max_active = 0;
   double dissipated = 0;       // W_d, the work of the Rayleigh damping from t = 0
   double data_work = 0;        // W, the work of the data in t from t = 0 (problems/data_work.hpp)
+  double friction_work = 0;    // W_f, the work the friction forces took from t = 0 (≥ 0)
   double wall_seconds = 0;     // the time loop, without the field files: of the steps before this process
   double fields_seconds = 0;   // the field files
 
@@ -66,6 +67,7 @@ struct RunTotals {
     max_violation = std::max(max_violation, violation);
     max_active = std::max(max_active, st.active);
     dissipated += st.dissipated;
+    friction_work += st.friction_work;
   }
 };
 

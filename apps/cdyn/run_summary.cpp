@@ -45,6 +45,7 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
                                   : nlohmann::ordered_json();
   if (has_data_in_t(p)) j["data_work"] = totals.data_work;  // the drift is then of J + W_d − J0 − data_work
   j["dissipated_work"] = totals.dissipated;  // W_d(T): J(T) + W_d(T) = J0 for a conservative scheme
+  if (!p.friction.empty()) j["friction_work"] = totals.friction_work;  // W_f(T): in the drift with W_d
   j["max_violation"] = totals.max_violation;
   j["max_active"] = totals.max_active;
   j["wall_s"] = totals.wall_seconds;
@@ -93,6 +94,9 @@ void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, c
   if (damped)
     std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy), "; damping dissipated W_d = %.6g",
                   r.totals.dissipated);
+  if (!sim.problem.friction.empty())
+    std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy), "; friction took W_f = %.6g",
+                  r.totals.friction_work);
   const int per = std::max(r.steps_done, 1);
   const double wall = r.totals.wall_seconds;
   std::printf(

@@ -29,7 +29,8 @@ const std::set<std::string> kKnownKeys = {
     "neumann.parts",  "neumann.traction",
     "obstacle.enabled", "obstacle.where", "obstacle.g",
     "obstacle.point", "obstacle.normal", "obstacle.gap",
-    "obstacles",
+    "obstacles",      "obstacle.friction", "obstacle.mu",  "obstacle.threshold",
+    "contact.friction", "contact.mu",   "contact.threshold",
     "initial.u",      "initial.v",
     "method.pair",    "method.mass",
     "time.scheme",    "time.dt",        "time.T",
@@ -43,7 +44,7 @@ const std::set<std::string> kKnownKeys = {
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 // The keys of each table of the array [[obstacles]] (elasticity: more rigid obstacles).
-const std::set<std::string> kObstacleKeys = {"where", "point", "normal", "gap", "name"};
+const std::set<std::string> kObstacleKeys = {"where", "point", "normal", "gap", "name", "friction", "mu", "threshold"};
 
 // The key with its user-chosen name replaced by "*": mesh.set.h → mesh.set.*,
 // materials.steel.E → materials.*.E (and the table materials.steel → materials.*).
@@ -137,7 +138,7 @@ void Scene::validate(const toml::table& t, const std::string& prefix) const {
         for (const auto& [sub, _] : *a->get(i)->as_table())
           if (!kObstacleKeys.count(std::string(sub.str())))
             throw InputError(source_ + ": unknown key 'obstacles[" + std::to_string(i) + "]." + std::string(sub.str()) +
-                             "' (where, point, normal, gap, name)");
+                             "' (where, point, normal, gap, name, friction, mu, threshold)");
       continue;
     }
     if (node.is_table() && is_known_table(key)) {

@@ -56,11 +56,38 @@ std::vector<double> numbers(const Scene& s, const std::string& key, int componen
   return c;
 }
 
+// The friction of an obstacle (problems/friction.hpp): its table's keys `friction`, `mu`,
+// `threshold`, else those of [contact].  A key the law would ignore is refused: μ
+// without Coulomb, a threshold without Tresca; μ and the threshold may vary along Γ_C
+// but not in time (they are taken at t = 0).
+void read_friction(const Scene& s, const std::string& key, SceneSpec::Rigid& r) {
+  auto pick = [&](const std::string& name) { return s.has(key + "." + name) ? key + "." + name : "contact." + name; };
+  r.friction_key = pick("friction");
+  r.mu_key = pick("mu");
+  r.threshold_key = pick("threshold");
+  r.friction = s.string(r.friction_key, "none");
+  if (r.friction != "none" && r.friction != "tresca" && r.friction != "coulomb")
+    throw InputError(r.friction_key + ": unknown friction law '" + r.friction + "' (none, tresca, coulomb)");
+  const bool coulomb = r.friction == "coulomb", tresca = r.friction == "tresca";
+  if (s.has(r.mu_key) && !coulomb)
+    throw InputError(r.mu_key + ": a friction coefficient needs " + r.friction_key + " = \"coulomb\" (it is " + r.friction + ")");
+  if (s.has(r.threshold_key) && !tresca)
+    throw InputError(r.threshold_key + ": a threshold needs " + r.friction_key + " = \"tresca\" (it is " + r.friction + ")");
+  if (coulomb && !s.has(r.mu_key)) throw InputError(r.mu_key + ": Coulomb friction needs the coefficient mu");
+  if (tresca && !s.has(r.threshold_key)) throw InputError(r.threshold_key + ": Tresca friction needs the threshold");
+  if (coulomb) r.mu = expression(s, r.mu_key, "0");
+  if (tresca) r.threshold = expression(s, r.threshold_key, "0");
+  for (const auto* e : {&r.mu, &r.threshold})
+    if (*e && (*e)->depends_on_time)
+      throw InputError((*e)->key + ": may vary along the contact boundary, not in time (taken at t = 0)");
+}
+
 // One rigid obstacle of elasticity from the table `key` ("obstacle" or "obstacles[k]");
 // dim as for expressions().
 SceneSpec::Rigid rigid_obstacle(const Scene& s, const std::string& key, int dim) {
   SceneSpec::Rigid r;
   r.key = key;
+  read_friction(s, key, r);
   r.name = s.string(key + ".name", key);
   r.where = s.strings(key + ".where", {"vertices"});
   if (r.where == std::vector<std::string>{"vertices"})
@@ -84,7 +111,8 @@ void reject_keys(const Scene& s, const std::vector<std::string>& keys, const std
   for (const std::string& key : keys)
     if (s.has(key)) throw InputError(key + ": not a key of physics.model = " + model);
 }
-const std::vector<std::string> kElasticityOnly = {"physics.nu",      "physics.lambda",   "physics.mu",
+const std::vector<std::string> kElasticityOnly = {"contact.friction", "contact.mu", "contact.threshold",
+                                                  "obstacle.friction", "obstacle.mu", "obstacle.threshold","physics.nu",      "physics.lambda",   "physics.mu",
                                                   "physics.gravity", "dirichlet.components", "neumann.parts",
                                                   "neumann.traction", "obstacle.point", "obstacle.normal",
                                                   "obstacle.gap", "obstacles"};
@@ -275,9 +303,17 @@ void read_boundary(const Scene& s, SceneSpec& spec) {
   o.enabled = s.boolean("obstacle.enabled", true);
   o.where = s.strings("obstacle.where", {"vertices"});
   if (vector) {
-    if (s.has("obstacle.where") || !s.has("obstacles")) o.rigid.push_back(rigid_obstacle(s, "obstacle", nc));
+    if (s.has("obstacle.where") || !s.has("obstacles"))
+      o.rigid.push_back(rigid_obstacle(s, "obstacle", nc));
+    else
+      for (const char* key : {"obstacle.friction", "obstacle.mu", "obstacle.threshold"})
+        if (s.has(key)) throw InputError(std::string(key) + ": [obstacle] has no where: the [[obstacles]] take their own");
     for (std::size_t k = 0; k < s.count("obstacles"); ++k)
       o.rigid.push_back(rigid_obstacle(s, "obstacles[" + std::to_string(k) + "]", nc));
+    if (!o.enabled)
+      for (const SceneSpec::Rigid& r : o.rigid)
+        if (r.friction != "none")
+          throw InputError(r.friction_key + ": friction needs the obstacle (obstacle.enabled = false)");
   } else {
     o.g = expression(s, "obstacle.g", "0");
     if (spec.physics.model == "oscillator" && o.g.depends_on_time)
@@ -439,6 +475,16 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec, const
   if (parameter == "kappa") return spec.physics.model == "bar" ? "physics.E" : "physics.tension";
   if (parameter == "pair" || parameter == "mass") return spec.method.key;
   if (parameter == "damping") return spec.time.parameters.damping.alpha != 0.0 ? "damping.alpha" : "damping.beta";
+  // friction: the key of the obstacle the message names, else of the first with friction
+  if (parameter == "friction" || parameter == "friction_mu" || parameter == "friction_threshold") {
+    const SceneSpec::Rigid* found = nullptr;
+    for (const SceneSpec::Rigid& r : spec.obstacle.rigid) {
+      if (r.friction == "none") continue;
+      if (!found || message.find("(" + r.name + ")") != std::string::npos) found = &r;
+    }
+    if (found)
+      return parameter == "friction" ? found->friction_key : parameter == "friction_mu" ? found->mu_key : found->threshold_key;
+  }
   if (parameter == "gap")  // "... (obstacle NAME)" names the obstacle
     for (const SceneSpec::Rigid& r : spec.obstacle.rigid)
       if (message.find("(obstacle " + r.name + ")") != std::string::npos) return r.key + ".gap";

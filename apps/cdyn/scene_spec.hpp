@@ -84,6 +84,11 @@ struct SceneSpec {
     std::vector<Expression> point;    // p(t), one expression per coordinate (plane; empty: the origin)
     std::vector<double> normal;       // n (plane; empty: the default, e_y in the plane, e_z in space)
     std::optional<Expression> gap;    // φ(x, y, z, t) (a curved obstacle), instead of point/normal
+    // Friction (problems/friction.hpp): the obstacle's own keys (friction, mu,
+    // threshold), else the scene's [contact] table; mu and threshold in x, y, z.
+    std::string friction = "none";    // none | tresca | coulomb
+    std::optional<Expression> mu, threshold;
+    std::string friction_key, mu_key, threshold_key;  // where each came from, for messages
   };
 
   struct Obstacle {

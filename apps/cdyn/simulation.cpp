@@ -123,6 +123,9 @@ RigidObstacle rigid(const Mesh& mesh, const SceneSpec::Rigid& r) {
     }
   }
   o.name = r.name;
+  o.friction.law = parse_friction_law(r.friction);
+  if (r.mu) o.friction.mu = r.mu->field;
+  if (r.threshold) o.friction.threshold = r.threshold->field;
   return o;
 }
 

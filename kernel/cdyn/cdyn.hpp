@@ -40,6 +40,7 @@
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/problems/data_work.hpp"
 #include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/problems/friction.hpp"
 #include "cdyn/problems/nodal_rotation.hpp"
 #include "cdyn/problems/oscillator.hpp"
 #include "cdyn/problems/rigid_obstacle.hpp"
@@ -56,7 +57,10 @@
 #include "cdyn/qp/bound_qp.hpp"
 #include "cdyn/qp/checks.hpp"
 #include "cdyn/qp/condensation.hpp"
+#include "cdyn/qp/friction_qp.hpp"
+#include "cdyn/qp/friction_solvers.hpp"
 #ifdef CDYN_WITH_IPOPT
+#include "cdyn/qp/friction_ipopt.hpp"
 #include "cdyn/qp/ipopt.hpp"
 #endif
 #include "cdyn/qp/kkt.hpp"

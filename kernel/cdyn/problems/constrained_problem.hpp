@@ -65,6 +65,9 @@ struct ConstrainedProblem {
   };
   std::vector<ContactNode> contact_nodes;
   std::vector<RigidObstacle> obstacles;
+  // The contact vertices with friction (problems/friction.hpp), each with its normal and
+  // tangential unknowns (rotated even against an axis-aligned plane); empty without.
+  std::vector<FrictionNode> friction;
 
   int n_free() const { return static_cast<int>(A.rows()); }
 

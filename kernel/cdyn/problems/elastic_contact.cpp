@@ -7,6 +7,7 @@
 #include <map>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/fe/assembly.hpp"
 #include "cdyn/mass/rotated.hpp"
 #include "cdyn/problems/nodal_rotation.hpp"
 
@@ -50,6 +51,13 @@ struct ContactSet {
   std::vector<Bound> bounds;
   std::vector<ConstrainedProblem::ContactNode> nodes; // every contact vertex
   std::vector<int> contact_dofs;                      // every free component of every contact vertex
+  // The rotated vertices whose components are all free: the node, its normal unknown
+  // and its tangential ones (where friction can act).
+  struct Frame {
+    int node = -1, normal = -1;
+    std::vector<int> tangential;
+  };
+  std::vector<Frame> frames;
 };
 
 double node_gap(const std::vector<RigidObstacle>& obstacles, const Point& a,
@@ -92,6 +100,7 @@ void constrain_vertex(int v, int node, const Point& n, const std::array<int, 3>&
     }
     s.rotation.nodes.push_back(r);
     s.bounds.push_back({i[0], node, 1.0, 0.0, true});
+    s.frames.push_back({node, i[0], dim == 3 ? std::vector<int>{i[1], i[2]} : std::vector<int>{i[1]}});
     return;
   }
   // Two free components of three, n with a part along both: rotate them to m/|m| and
@@ -126,7 +135,9 @@ ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& 
       i[k] = bc.free_index(W.vertex_dof(v, k));
       if (i[k] >= 0) s.contact_dofs.push_back(i[k]);
     }
-    constrain_vertex(v, node, c.normal, i, dim, W, UD, rotate_always, s);
+    // friction needs the tangential unknown: rotated even against an axis-aligned plane
+    const bool rotate = rotate_always || obstacles[c.obstacle].friction.law != FrictionLaw::None;
+    constrain_vertex(v, node, c.normal, i, dim, W, UD, rotate, s);
   }
   return s;
 }
@@ -141,6 +152,47 @@ void write_bounds(const Mesh& mesh, const std::vector<RigidObstacle>& obstacles,
     const double value = b.factor == 1.0 && b.offset == 0.0 ? g : b.factor * g + b.offset;
     (b.lower ? lower : upper)[b.index] = value;
   }
+}
+
+// The friction nodes of the contact vertices whose obstacle has friction and whose
+// components are all free (problems/friction.hpp): μ(a), or s_a = ∫_{Γ_C} s φ_a, the
+// threshold integrated over the obstacle's contact parts against the vertex's basis
+// function (assemble_boundary_load with the traction (s, 0)).
+std::vector<FrictionNode> friction_nodes(const Mesh& mesh, const FESpace& W, const std::vector<RigidObstacle>& obstacles,
+                                         const ContactSet& set) {
+  std::vector<FrictionNode> out;
+  std::vector<Eigen::VectorXd> share(obstacles.size());
+  for (const ContactSet::Frame& fr : set.frames) {
+    const ConstrainedProblem::ContactNode& c = set.nodes[fr.node];
+    const FrictionSpec& spec = obstacles[c.obstacle].friction;
+    if (spec.law == FrictionLaw::None) continue;
+    const Point& a = mesh.vertices[c.vertex];
+    FrictionNode f{fr.node, fr.normal, fr.tangential, spec.law};
+    if (spec.law == FrictionLaw::Coulomb) {
+      f.mu = spec.mu(a, 0.0);
+      if (!(f.mu >= 0.0) || !std::isfinite(f.mu))
+        throw InputError("friction_mu", "the friction coefficient must be finite and ≥ 0 (" + obstacles[c.obstacle].name + ")");
+    } else {
+      const double s = spec.threshold(a, 0.0);
+      if (!(s >= 0.0)) throw InputError("friction_threshold", "the Tresca threshold must be ≥ 0 (" + obstacles[c.obstacle].name + ")");
+      if (std::isinf(s)) {
+        f.threshold = s;  // bonded (∞ · φ_a would be NaN where φ_a = 0)
+      } else {
+        Eigen::VectorXd& w = share[c.obstacle];
+        if (w.size() == 0) {
+          std::vector<Field> g(mesh.dim, Field(zero_field));
+          g[0] = spec.threshold;
+          w = assemble_boundary_load(W, obstacles[c.obstacle].contact_parts, g, 0.0);
+        }
+        f.threshold = w[W.vertex_dof(c.vertex, 0)];
+        if (!(f.threshold >= 0.0) || !std::isfinite(f.threshold))
+          throw InputError("friction_threshold", "the Tresca threshold must be finite and ≥ 0 on Γ_C, or ∞ (" +
+                                                     obstacles[c.obstacle].name + ")");
+      }
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
 }
 
 }  // namespace
@@ -235,6 +287,10 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   // K̄^h.  The contact set (and the rotation) is built even when the obstacle is
   // disabled: the redistributed mass depends on it, and the unconstrained run must
   // keep the same M and the same unknowns.
+  bool friction = false;
+  for (const RigidObstacle& o : obstacles) friction = friction || o.friction.law != FrictionLaw::None;
+  if (friction && dim == 3)
+    throw InputError("friction", "nodal friction is implemented in the plane (2D meshes) only, not yet in space");
   const ContactSet contact = contact_set(mesh, W, *p.bc, p.UD, obstacles, d.rotate_always);
   const double inf = std::numeric_limits<double>::infinity();
   p.lower = Eigen::VectorXd::Constant(A_ff.rows(), -inf);
@@ -244,6 +300,7 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   if (d.obstacle) {
     write_bounds(mesh, obstacles, contact, 0.0, p.lower, p.upper);
     for (const Bound& b : contact.bounds) p.constrained.push_back(b.index);
+    p.friction = friction_nodes(mesh, W, obstacles, contact);
     bool moves = false;
     for (const RigidObstacle& o : obstacles) moves = moves || o.moves;
     if (moves)

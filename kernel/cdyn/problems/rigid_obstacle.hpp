@@ -22,6 +22,7 @@
 
 #include "cdyn/fe/field.hpp"
 #include "cdyn/mesh/mesh.hpp"
+#include "cdyn/problems/friction.hpp"
 
 namespace cdyn {
 
@@ -36,6 +37,9 @@ struct RigidObstacle {
   // central differences of φ at x with a step of 1e-6 of the mesh size (the normal only
   // defines the direction the constraint acts in).
   std::function<Point(const Point&)> gradient;
+
+  // Friction between the body and this obstacle (problems/friction.hpp): none by default.
+  FrictionSpec friction;
 
   // The plane through p with normal n (normalized; InputError "normal" if zero).
   static RigidObstacle plane(Point p, Point n, std::vector<int> contact_parts);

@@ -8,6 +8,9 @@
 // Rayleigh damping adds α Bᵀ V^{n+1} + β A (U^{n+1} − Uⁿ) c to the first equation, i.e.
 // (αM + βA)(U^{n+1} − Uⁿ) c:  S += αc M + βc A,  r += (αc M + βc A) Uⁿ,  and J + W_d
 // never increases (docs/schemes.md, "Rayleigh damping").
+// Friction (problems/friction.hpp): the step is qp/friction_qp.hpp's (FQP) with X̂ = Uⁿ,
+// its slip the step's tangential increment, and J + W_d + W_f never increases
+// (docs/friction.md).
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
@@ -18,7 +21,7 @@ namespace {
 class BackwardEuler final : public StepQPScheme {
  public:
   BackwardEuler(const ConstrainedProblem& p, StepSolver& solver, double dt, const SchemeParameters& parameters)
-      : StepQPScheme(p, solver, dt, 1.0, 1.0, parameters.condense, parameters.damping) {}
+      : StepQPScheme(p, solver, dt, 1.0, 1.0, parameters.condense, parameters.damping, 1.0, parameters.tol) {}
   std::string name() const override { return "backward_euler"; }
 
   StepStats step(State& s) override {

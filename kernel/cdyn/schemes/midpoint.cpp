@@ -21,7 +21,14 @@
 // problem (14) at t^{n+1}, computed after the step by FullStepReconstruction whenever
 // Ker B has a local basis (P1+/P0, the redistributed mass; schemes/full_step.hpp).  The
 // step reads Uⁿ only through B Uⁿ, so this changes the reported state, not the dynamics.
+//
+// Friction (problems/friction.hpp): midpoint_end only, with a mass that has no massless
+// mode; the step is qp/friction_qp.hpp's (FQP) with X̂ = Uⁿ, and
+// J^{n+1} + W_d + W_f − Jⁿ = (U^{n+1} − Uⁿ)_Nᵀ λ_N exactly (docs/friction.md).
 #include <optional>
+#include <string>
+
+#include "cdyn/base/error.hpp"
 
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/schemes/full_step.hpp"
@@ -36,10 +43,18 @@ class Midpoint final : public StepQPScheme {
   Midpoint(const ConstrainedProblem& p, StepSolver& solver, double dt, bool constraint_at_end,
            const SchemeParameters& parameters)
       : StepQPScheme(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, parameters.condense,
-                     parameters.damping, constraint_at_end ? 1.0 : 2.0),
+                     parameters.damping, constraint_at_end ? 1.0 : 2.0, parameters.tol),
         at_end_(constraint_at_end) {
     full_step_.emplace(p, parameters.tol);
     if (!full_step_->available() || (full_step_->needed() && !parameters.reconstruct)) full_step_.reset();
+    // Friction: eq. (14) has no friction term, so a reconstructed massless part would
+    // slide freely; only a mass with no massless mode (Ker M = {0}: nothing to
+    // reconstruct) keeps the frictional step's U^{n+1} as it is (docs/friction.md).
+    if (!p.friction.empty() && (!at_end_ || !p.mass->is_invertible()))
+      throw InputError("scheme", std::string(at_end_ ? "midpoint_end" : "midpoint") +
+                                     " with friction needs a mass without massless modes (P1/P1, P1/P0, consistent, "
+                                     "lumped) and the constraint at the end of the step: use midpoint_end with such a "
+                                     "mass, or backward_euler");
   }
   std::string name() const override { return at_end_ ? "midpoint_end" : "midpoint"; }
 

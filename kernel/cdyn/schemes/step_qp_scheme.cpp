@@ -1,17 +1,23 @@
 // step_qp_scheme.cpp — the step QP S = aA + kM, built once and solved with warm starts.
 #include "cdyn/schemes/step_qp_scheme.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
 #include "cdyn/linalg/parallel.hpp"
+#include "cdyn/qp/friction_solvers.hpp"
+#ifdef CDYN_WITH_IPOPT
+#include "cdyn/qp/friction_ipopt.hpp"
+#endif
 
 namespace cdyn {
 
 StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m,
-                           bool condense, const RayleighDamping& damping, double s)
-    : p_(p), solver_(solver), dt_(dt), damping_(damping), condense_(condense), M_(p.mass->matrix()) {
+                           bool condense, const RayleighDamping& damping, double s, double friction_tol)
+    : p_(p), solver_(solver), dt_(dt), damping_(damping), condense_(condense), M_(p.mass->matrix()),
+      slip_factor_(s), friction_tol_(friction_tol) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("dt", "must be positive and finite (got " + to_text(dt) + ")");
   if (!M_) {
     const SaddleForm f = p.mass->saddle(SparseMatrix(), 1.0);
@@ -32,20 +38,58 @@ void StepQPScheme::build(double a, double m) {
   qp_.saddle.reset();
   condensation_.reset();
   has_last_ = false;
+  has_friction_last_ = false;
   if (!M_) {
     qp_.S = SparseMatrix();
     qp_.saddle = p_.mass->saddle(SparseMatrix(a_ * p_.A), k);
+    map_friction();
     return;
   }
   qp_.S = a_ * p_.A + k * *M_;
   qp_.S.makeCompressed();
-  if (!condense_) return;
-  DiagonalCondensation c(qp_.S, p_.lower, p_.upper);
-  if (c.n_condensed() == 0) return;
-  qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
-  qp_.lower = c.kept(p_.lower);
-  qp_.upper = c.kept(p_.upper);
-  condensation_.emplace(std::move(c));
+  if (condense_) {
+    // The friction term |X_T − X̂_T| is not quadratic: the tangential unknowns are kept
+    // (marked bounded for the condensation; the step's bounds are p_'s).
+    Eigen::VectorXd keep = p_.lower;
+    for (const FrictionNode& node : p_.friction)
+      for (int t : node.tangential) keep[t] = 0.0;
+    DiagonalCondensation c(qp_.S, keep, p_.upper);
+    if (c.n_condensed() > 0) {
+      qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
+      qp_.lower = c.kept(p_.lower);
+      qp_.upper = c.kept(p_.upper);
+      condensation_.emplace(std::move(c));
+    }
+  }
+  map_friction();
+}
+
+void StepQPScheme::map_friction() {
+  friction_.contacts.clear();
+  if (p_.friction.empty()) return;
+  // index of each unknown in the step QP (−1: condensed)
+  std::vector<int> index(p_.n_free());
+  for (int i = 0; i < p_.n_free(); ++i) index[i] = i;
+  if (condensation_) {
+    Eigen::VectorXd all(p_.n_free());
+    for (int i = 0; i < p_.n_free(); ++i) all[i] = i;
+    const Eigen::VectorXd kept = condensation_->kept(all);
+    std::fill(index.begin(), index.end(), -1);
+    for (int j = 0; j < kept.size(); ++j) index[static_cast<int>(kept[j])] = j;
+  }
+  for (const FrictionNode& node : p_.friction) {
+    FrictionContact c;
+    c.normal = index[node.normal];
+    for (int t : node.tangential) c.tangential.push_back(index[t]);
+    c.coulomb = node.law == FrictionLaw::Coulomb;
+    c.mu = node.mu;
+    c.threshold = node.threshold;
+    // (a vertex unknown is coupled to its neighbours: never condensed)
+    if (c.normal < 0 || *std::min_element(c.tangential.begin(), c.tangential.end()) < 0)
+      throw NumericalError("friction: a contact unknown was condensed");
+    friction_.contacts.push_back(std::move(c));
+  }
+  has_friction_last_ = false;
 }
 
 void StepQPScheme::set_factors(double a, double m) {
@@ -96,6 +140,7 @@ void StepQPScheme::end_condensation() {
   qp_.upper = p_.upper;
   condensation_.reset();
   has_last_ = false;
+  map_friction();
 }
 
 SchemeMemory StepQPScheme::memory() const {
@@ -103,6 +148,13 @@ SchemeMemory StepQPScheme::memory() const {
   m.numbers["condensed"] = condensation_ ? 1.0 : 0.0;
   store_warm_start(m, "step_qp", last_, has_last_);
   for (const auto& [name, v] : remembered_) m.store_if_any(name, *v);
+  if (has_friction_last_) {
+    m.vectors["friction_threshold"] = friction_last_.threshold;
+    m.vectors["friction_direction"] = friction_last_.direction;
+    Eigen::VectorXd stick(friction_last_.stick.size());
+    for (std::size_t k = 0; k < friction_last_.stick.size(); ++k) stick[k] = friction_last_.stick[k];
+    m.vectors["friction_stick"] = stick;
+  }
   return m;
 }
 
@@ -113,6 +165,15 @@ void StepQPScheme::restore(const SchemeMemory& m) {
   if (m.number("condensed") == 0.0 && condensation_) end_condensation();
   has_last_ = load_warm_start(m, "step_qp", last_);
   for (const auto& [name, v] : remembered_) *v = m.vector_or_empty(name);
+  has_friction_last_ = !friction_.contacts.empty() && has_last_ && m.vectors.count("friction_stick");
+  if (has_friction_last_) {
+    friction_last_ = FrictionResult{};
+    friction_last_.qp = last_;
+    friction_last_.threshold = m.vector("friction_threshold");
+    friction_last_.direction = m.vector("friction_direction");
+    const Eigen::VectorXd& stick = m.vector("friction_stick");
+    for (int k = 0; k < stick.size(); ++k) friction_last_.stick.push_back(stick[k] != 0.0);
+  }
 }
 
 void StepQPScheme::constrain_at(double t) {
@@ -122,9 +183,40 @@ void StepQPScheme::constrain_at(double t) {
   set_bounds(lower, upper);
 }
 
+void StepQPScheme::solve_with_friction(State& s, StepStats& stats) {
+  friction_.reference = condensation_ ? condensation_->kept(s.U) : s.U;  // X̂ = Uⁿ
+  FrictionOptions options;
+  options.tol = friction_tol_;
+  const FrictionResult* warm = has_friction_last_ ? &friction_last_ : nullptr;
+  if (solver_.name() == "pgs")
+    friction_last_ = solve_friction_pgs(qp_, friction_, options, warm);
+#ifdef CDYN_WITH_IPOPT
+  else if (solver_.name() == "ipopt" && !qp_.saddle)
+    friction_last_ = solve_friction_ipopt(qp_, friction_, options, warm);
+#endif
+  else
+    friction_last_ = solve_friction_ssn(qp_, friction_, solver_, options, warm);
+  has_friction_last_ = true;
+  const Eigen::VectorXd& X = friction_last_.qp.X;
+  stats.friction_work = slip_factor_ * friction_work(friction_, X, friction_last_.threshold);
+  const int m = static_cast<int>(friction_.contacts.size());
+  s.contact_status.resize(m);
+  s.slip.resize(m);
+  for (int k = 0; k < m; ++k) {
+    const FrictionContact& c = friction_.contacts[k];
+    s.contact_status[k] = static_cast<int>(friction_last_.status[k]);
+    s.slip[k] = slip_factor_ * (X[c.tangential[0]] - friction_.reference[c.tangential[0]]);
+  }
+}
+
 Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStats& stats) {
   qp_.r = condensation_ ? condensation_->reduce(r) : r;  // r_c = r_v − S_vb S_bb⁻¹ r_b
-  last_ = solver_.solve(qp_, has_last_ ? &last_ : nullptr);
+  if (friction_.contacts.empty()) {
+    last_ = solver_.solve(qp_, has_last_ ? &last_ : nullptr);
+  } else {
+    solve_with_friction(s, stats);
+    last_ = friction_last_.qp;
+  }
   has_last_ = true;
   stats.qp_iterations = last_.iterations;
   stats.qp_seconds = last_.seconds;

@@ -16,6 +16,14 @@
 // with the back-substitution X_b = S_bb⁻¹ (r_b − S_bv X_v).  The same QP, a third of the
 // unknowns for P1+/P0; the stats (iterations, KKT residual) are those of the condensed
 // QP.  SchemeParameters::condense = false solves the full QP instead.
+//
+// Friction (problems/friction.hpp).  When the problem has friction nodes, the step is
+// the frictional problem (FQP) of qp/friction_qp.hpp with the reference X̂ = Uⁿ: its
+// slip X_T − Uⁿ_T is the step's tangential increment divided by s (s = 1 for the schemes
+// that take friction: backward Euler and midpoint_end, X = U^{n+1}).  It is solved by
+// projected Gauss–Seidel when the step solver is pgs, by Ipopt on split slip variables
+// when it is ipopt (explicit S; qp/friction_ipopt.hpp), else by the semismooth Newton
+// method around the step solver (qp/friction_solvers.hpp), to the scheme's tol.
 #pragma once
 
 #include <string>
@@ -23,6 +31,7 @@
 #include <vector>
 
 #include "cdyn/qp/condensation.hpp"
+#include "cdyn/qp/friction_qp.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 
 namespace cdyn {
@@ -40,7 +49,7 @@ class StepQPScheme : public TimeScheme {
   // (a, m): the undamped scheme's factors; the damping's share is added here for a step
   // whose increment is s (X − Uⁿ).
   StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m, bool condense = true,
-               const RayleighDamping& damping = {}, double s = 1.0);
+               const RayleighDamping& damping = {}, double s = 1.0, double friction_tol = 1e-10);
 
   // M x = Bᵀ (C⁻¹ B x): the momentum of the velocity of x, by the same route as inertia()
   // below (not the explicit M, which has more entries than B and Bᵀ together for P1+/P0).
@@ -89,6 +98,8 @@ class StepQPScheme : public TimeScheme {
  private:
   void build(double a, double m);
   void end_condensation();  // the full QP from now on
+  void map_friction();      // the friction nodes' unknowns in the step QP's numbering
+  void solve_with_friction(State& s, StepStats& stats);  // fills friction_last_
 
   double a_ = 0.0, m_ = 0.0;
   bool condense_;
@@ -98,6 +109,12 @@ class StepQPScheme : public TimeScheme {
   QPResult last_;
   bool has_last_ = false;
   std::vector<std::pair<std::string, Eigen::VectorXd*>> remembered_;
+  // friction: the conditions on the QP's unknowns, the last result (the warm start),
+  // the step's increment per unit slip (s), the tolerance
+  FrictionConditions friction_;
+  FrictionResult friction_last_;
+  bool has_friction_last_ = false;
+  double slip_factor_ = 1.0, friction_tol_ = 1e-10;
 };
 
 }  // namespace cdyn

@@ -47,6 +47,13 @@ void check_damping(const std::string& name, const RayleighDamping& d) {
 std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const ConstrainedProblem& problem,
                                              StepSolver& solver, double dt, const SchemeParameters& parameters) {
   check_damping(name, parameters.damping);
+  // Friction is in the one-step schemes whose step unknown is U^{n+1} (docs/friction.md).
+  if (!problem.friction.empty() && name != "backward_euler" && name != "midpoint_end" && name != "midpoint") {
+    const std::vector<std::string> known = time_scheme_names();
+    if (std::find(known.begin(), known.end(), name) != known.end())
+      throw InputError("scheme", name + " takes no friction (nodal friction is in backward_euler, and in midpoint_end "
+                                        "with a mass without massless modes)");
+  }
   const bool c = parameters.condense;
   if (name == "backward_euler") return make_backward_euler(problem, solver, dt, parameters);
   if (name == "midpoint") return make_midpoint(problem, solver, dt, parameters);
@@ -61,6 +68,8 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
 }
 
 std::string recommended_scheme(const ConstrainedProblem& problem) {
+  if (!problem.friction.empty())  // (docs/friction.md)
+    return problem.mass->is_invertible() ? "midpoint_end" : "backward_euler";
   return FullStepReconstruction(problem, 1e-10).needed() ? "discrete_gradient" : "midpoint_end";
 }
 

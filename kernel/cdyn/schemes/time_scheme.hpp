@@ -25,6 +25,12 @@ struct State {
   double t = 0.0;
   Eigen::VectorXd U, V;
   Eigen::VectorXd reaction;  // Gᵀλ of the last step on the free dofs (λ the seed's multiplier)
+  // With friction (ConstrainedProblem::friction), per friction node, of the last step:
+  // its status (qp/friction_qp.hpp: 0 open, 1 stick, 2 slip) and its slip, the
+  // increment U^{n+1}_T − Uⁿ_T of its (first) tangential unknown.  The tangential force
+  // is `reaction` on the tangential unknown.  Empty without friction or before a step.
+  std::vector<int> contact_status;
+  Eigen::VectorXd slip;
 };
 
 // What one step cost and found.
@@ -52,6 +58,10 @@ struct StepStats {
   // J^{n+1} + dissipated − Jⁿ is the contact's work (and the data's) for the midpoint
   // rules, 0 for discrete_gradient, ≤ 0 for backward Euler (docs/schemes.md).
   double dissipated = 0.0;
+  // The work of the friction forces over the step's slip, W_f = Σ s_a |U^{n+1}_T − Uⁿ_T|
+  // ≥ 0 (qp/friction_qp.hpp; 0 without friction): the midpoint rule's balance becomes
+  // J^{n+1} + W_d + W_f − Jⁿ = (U^{n+1} − Uⁿ)_Nᵀ λ_N, the normal contact's work.
+  double friction_work = 0.0;
 };
 
 // How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):
@@ -109,6 +119,8 @@ struct SchemeParameters {
   // terms of ΔH = ΔK + ΔΨ (½VᵀCV, |Ψ| and the kinetic change's two parts: the round-off
   // of ΔH is a few ε of them; docs/schemes.md, "The discrete gradient scheme").
   double energy_tol = 1e-12;
+  // The frictional step (qp/friction_solvers.hpp) is solved to friction_residual ≤ tol
+  // (the scheme's tol above, the step QP's own).
   // Rayleigh damping D = αM + βA (backward_euler, midpoint, midpoint_end,
   // discrete_gradient; the other schemes refuse it).
   RayleighDamping damping;

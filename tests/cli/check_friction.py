@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""check_friction.py — Coulomb and Tresca friction through the command line
+(docs/friction.md; docs/outputs.md, the column `friction_work` and contact.csv's
+`tangential_force`, `slip`, `status`).
+
+Usage: check_friction.py CDYN SOURCE_DIR WORKDIR
+
+data/scenes/incline_block.toml, the plate on a plane inclined by θ (gravity turned by θ,
+the plane y = 0; backward Euler, nearly quasi-static):
+  - sliding (θ = 30°, μ = 0.3): every vertex of the base slips (status 2) from step 1 on,
+    each tangential force is μ times its normal force (measured 9.5e-8 of the largest
+    normal force; the friction residual's tol 1e-10 is in units of X, a force error
+    up to diag(S)·tol·|X| ≈ 1e-4 of it; asserted 1e-6), and the momentum grows like
+    m a t with a = g (sin θ − μ cos θ): from step 10 on measured max |px − m a t| =
+    1.5e-9 of m a T, asserted 1e-6 (at step 1, 3.7e-5: the plate settles on the plane
+    after its release, its normal force first below m g cos θ, then the momentum of
+    that settling is given back);
+  - the energy: J contains the gravity's potential, so J + W_f is J0 minus backward
+    Euler's own dissipation: J + W_f never increases; W_f(T) is μ m g cos θ times the
+    slide length (the centre's displacement ux@centre, which also carries the plate's
+    elastic shear, about 1e-5 of it): asserted 1e-3;
+  - sticking (θ = 15°, tan θ = 0.27, μ = 0.5): no vertex slips at any step, slip exactly
+    0 and status 1 everywhere, W_f = 0.  The elastic plate needs a margin the rigid
+    block does not: measured, with μ = 0.4 (tan θ/μ = 0.67) the downhill corner slips
+    by 2.9e-9 m at step 1, with μ = 0.3 (0.89) half of the base by 3.5e-8 m at step 2,
+    and nothing after: the stress concentrates at the corner and the normal force
+    undershoots once as the plate settles after its sudden release; from μ = 0.45 on
+    nothing slips.
+  - μ = 0: the frictionless slide, px = m g sin θ t (the normal force has no part
+    along x, and backward Euler's momentum gains dt F per step): asserted 1e-9.
+Only the standard library is used.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_helpers import check, failures, run  # noqa: E402
+
+cdyn, src, work = sys.argv[1:4]
+scene = os.path.join(src, "data/scenes/incline_block.toml")
+g, m = 9.81, 1000.0 * 0.4 * 0.05
+
+
+def gravity(theta):
+    return f"physics.gravity=[{g * math.sin(theta)!r}, {-g * math.cos(theta)!r}]"
+
+
+# Sliding: θ = 30°, μ = 0.3.
+theta, mu = math.radians(30.0), 0.3
+every = "output.contact_every=1"
+s, rows, contact = run(cdyn, scene, os.path.join(work, "slide"), gravity(theta), every)
+a = g * (math.sin(theta) - mu * math.cos(theta))
+T = rows[-1]["t"]
+dev = max(abs(r["px"] - m * a * r["t"]) for r in rows if r["step"] >= 10) / (m * a * T)
+first = abs(rows[1]["px"] - m * a * rows[1]["t"]) / (m * a * T)
+print(f"sliding: a = {a:.4f} m/s², max |px - m a t|/(m a T) = {dev:.2e} from step 10 ({first:.2e} at step 1)")
+check(dev <= 1e-6, "the sliding block's momentum is m g (sin θ − μ cos θ) t")
+moving = [c for c in contact if c["step"] > 0]
+check(all(c["status"] == 2 for c in moving), "every vertex of the base slips")
+ratio = max(abs(abs(c["tangential_force"]) - mu * c["force"]) for c in moving) / max(c["force"] for c in moving)
+print(f"  max ||λ_T| - μ λ_N| / max λ_N = {ratio:.2e}")
+check(ratio <= 1e-6, "|λ_T| = μ λ_N where the base slips")
+check(all(c["slip"] < 0 and c["tangential_force"] > 0 for c in moving),
+      "the slip is along −t = +x (down the slope), the friction force against it")
+W = [r["friction_work"] for r in rows]
+check(all(b >= a_ for a_, b in zip(W, W[1:])), "W_f is non-decreasing")
+check(all(r1["E_total"] + r1["friction_work"] <= r0["E_total"] + r0["friction_work"] + 1e-12 * s["E_scale"]
+          for r0, r1 in zip(rows, rows[1:])), "backward Euler: J + W_f never increases")
+slide = rows[-1]["ux@centre"]
+expected = mu * m * g * math.cos(theta) * slide
+print(f"  W_f(T) = {W[-1]:.6f}, μ m g cos θ · slide = {expected:.6f}")
+check(abs(W[-1] / expected - 1.0) <= 1e-3, "W_f(T) is μ N times the slide length")
+check(s["friction_work"] == W[-1], "summary.json's friction_work is the last row's")
+
+# Sticking: θ = 15°, μ = 0.5.
+s1, rows1, contact1 = run(cdyn, scene, os.path.join(work, "stick"), gravity(math.radians(15.0)), 'contact.mu="0.5"',
+                          every)
+slips = max(abs(c["slip"]) for c in contact1)
+print(f"sticking: max |slip| = {slips:.1e}, W_f(T) = {rows1[-1]['friction_work']:.1e}")
+check(slips == 0.0 and rows1[-1]["friction_work"] == 0.0, "no vertex slips when tan θ < μ")
+check(all(c["status"] == 1 for c in contact1 if c["step"] > 0), "every vertex of the base sticks")
+
+# μ = 0: the frictionless history.
+s2, rows2, _ = run(cdyn, scene, os.path.join(work, "mu0"), 'contact.mu="0"')
+a0 = g * math.sin(theta)
+dev0 = max(abs(r["px"] - m * a0 * r["t"]) for r in rows2) / (m * a0 * T)
+print(f"mu = 0: max |px - m g sin θ t|/(m g sin θ T) = {dev0:.2e}, W_f = {rows2[-1]['friction_work']:.1e}")
+check(dev0 <= 1e-9 and rows2[-1]["friction_work"] == 0.0, "μ = 0 slides freely, W_f = 0")
+
+if failures:
+    sys.exit("check_friction: FAILED: " + "; ".join(failures))
+print("check_friction: ok")
