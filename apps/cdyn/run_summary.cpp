@@ -62,7 +62,11 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
     j["impact"] = r.history.impact();
     j["max_penetration"] = r.history.max_penetration();  // the whole boundary against every obstacle
   }
-  j["wellposed"] = wellposedness_summary(sim);
+  if (sim.spec.output.wellposed) {
+    j["wellposed"] = wellposedness_summary(sim);
+  } else {
+    j["wellposed"] = {{"beta", nullptr}, {"satisfied", nullptr}, {"not_computed", "output.wellposed = false"}};
+  }
   const SceneSpec::Units& units = sim.spec.units;
   j["units"] = units.length.empty() ? nlohmann::ordered_json()
                                     : nlohmann::ordered_json{{"length", units.length}, {"force", units.force}, {"time", units.time}};

@@ -40,7 +40,7 @@ const std::set<std::string> kKnownKeys = {
     "solver.condense", "solver.cg_iterations", "solver.free_block", "solver.linear", "solver.threads",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
-    "output.stress",  "output.checkpoint_every",
+    "output.stress",  "output.wellposed",  "output.checkpoint_every",
 };
 const std::set<std::string> kFreeTables = {"output.probes"};
 // The keys of each table of the array [[obstacles]] (elasticity: more rigid obstacles).

@@ -420,6 +420,7 @@ void read_output(const Scene& s, SceneSpec& spec) {
   o.fields = s.boolean("output.fields", true);
   o.plots = s.boolean("output.plots", true);
   o.stress = s.boolean("output.stress", true);
+  o.wellposed = s.boolean("output.wellposed", true);
   o.checkpoint_every = s.integer("output.checkpoint_every", 0);
   if (o.checkpoint_every < 0) throw InputError("output.checkpoint_every: must be 0 (no checkpoints) or more");
   for (const std::string& name : s.keys("output.probes"))

@@ -125,6 +125,7 @@ struct SceneSpec {
     int every = 1, contact_every = 1;  // default: about 100 to 200 frames per run
     bool fields = true, plots = true;
     bool stress = true;        // elasticity: σ, ε, von Mises in the field files
+    bool wellposed = true;     // condition (12) in summary.json (its factorizations fill much more in 3D)
     int checkpoint_every = 0;  // steps between two checkpoints (0: none; checkpoint.hpp)
     std::vector<std::pair<std::string, std::vector<double>>> probes;  // name, coordinates
   } output;
