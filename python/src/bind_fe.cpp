@@ -70,8 +70,8 @@ void bind_fe(py::module_& m) {
           },
           "U"_a, "c"_a, "xi"_a, "k"_a = 0)
       .def("__repr__", [](const FESpace& W) {
-        return "<cdyn.FESpace " + to_string(W.element()) + (W.components() > 1 ? "^2" : "") + ", " +
-               std::to_string(W.n_dofs()) + " dofs>";
+        const std::string power = W.components() > 1 ? "^" + std::to_string(W.components()) : "";
+        return "<cdyn.FESpace " + to_string(W.element()) + power + ", " + std::to_string(W.n_dofs()) + " dofs>";
       });
 
   py::class_<DirichletLift>(m, "DirichletLift", "Free and fixed dofs of W^h: U = P U_f + U_D (fe/dirichlet.hpp)")
