@@ -277,14 +277,8 @@ Simulation make_simulation(const SceneSpec& spec) {
                     : s.solver.options.pdas_cg_only ? "midpoint"
                                                     : recommended_scheme(p);
   sim.solver_name = s.solver.name;
-  // (the step QP of a continuous H^h is in saddle form: no explicit S for CG alone;
-  // H^h = W^h has B = C and the explicit M = C, schemes/step_qp_scheme.cpp)
-  auto explicit_step = [&p] {
-    if (p.mass->matrix()) return true;
-    const SaddleForm f = p.mass->saddle(SparseMatrix(), 1.0);
-    return same_matrix(f.B, f.C);
-  };
-  if (s.solver.options.pdas_cg_only && !explicit_step())
+  // (without a sparse M the step QP is in saddle form: no explicit S for CG alone)
+  if (s.solver.options.pdas_cg_only && !sparse_mass(*p.mass))
     throw InputError("solver.linear: the CG path needs an explicit step matrix; with " + sim.pair +
                      " the step is in saddle form (H^h continuous), solved by UMFPACK: use solver.linear = \"factor\"");
   sim.tol = s.solver.options.tol;

@@ -28,4 +28,12 @@ std::unique_ptr<MassModel> make_mass_model(const FESpace& W, const DirichletLift
   return make_mass_model(W, bc, MassSpec::parse(spec, W.element()), rho, contact_free_dofs);
 }
 
+std::optional<SparseMatrix> sparse_mass(const MassModel& mass) {
+  std::optional<SparseMatrix> M = mass.matrix();
+  if (M) return M;
+  const SaddleForm f = mass.saddle(SparseMatrix(), 1.0);
+  if (same_matrix(f.B, f.C)) M = f.C;
+  return M;
+}
+
 }  // namespace cdyn

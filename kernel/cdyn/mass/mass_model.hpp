@@ -127,4 +127,9 @@ struct MixedBlocks {
 MixedBlocks mixed_blocks(const FESpace& W, const DirichletLift& bc, Element H, const CellCoefficient& rho,
                          bool velocity_dirichlet = true);
 
+// M as a sparse matrix whenever it is one: matrix() (H^h = P0, the classical models),
+// or C when B = C (H^h = W^h: M = Bᵀ C⁻¹ B = C, the consistent mass); empty when C⁻¹
+// is dense (P1+/P1, P2/P1: the step QP is then in saddle form).
+std::optional<SparseMatrix> sparse_mass(const MassModel& mass);
+
 }  // namespace cdyn

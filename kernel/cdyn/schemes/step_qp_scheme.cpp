@@ -16,16 +16,12 @@ namespace cdyn {
 
 StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, double dt, double a, double m,
                            bool condense, const RayleighDamping& damping, double s, double friction_tol)
-    : p_(p), solver_(solver), dt_(dt), damping_(damping), condense_(condense), M_(p.mass->matrix()),
+    : p_(p), solver_(solver), dt_(dt), damping_(damping), condense_(condense), M_(sparse_mass(*p.mass)),
       slip_factor_(s), friction_tol_(friction_tol) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw InputError("dt", "must be positive and finite (got " + to_text(dt) + ")");
-  if (!M_) {
-    const SaddleForm f = p.mass->saddle(SparseMatrix(), 1.0);
-    // H^h = W^h (P1/P1): B = C, so M = Bᵀ C⁻¹ B = C, the consistent mass — sparse after
-    // all; an explicit S (one Cholesky factor) instead of the saddle form (an LU of a
-    // matrix twice the size per active set).
-    if (same_matrix(f.B, f.C)) M_ = f.C;
-  }
+  // (H^h = W^h, P1/P1: M = C is sparse after all, sparse_mass: an explicit S, one
+  // Cholesky factor, instead of the saddle form, an LU of a matrix twice the size per
+  // active set)
   build(a + s * damping.beta / dt, m + s * damping.alpha * dt);  // + (s/dt)(αM + βA)
 }
 
