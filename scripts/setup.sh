@@ -25,6 +25,7 @@ packages=(
   pybind11-dev python3-pybind11 python3-dev python3-scipy  # the Python module cdyn (docs/python.md)
   python3-pytest python3-nbconvert python3-ipykernel       # its tests and notebooks (label python)
   freefem++ libfreefem++                   # independent reference numbers
+  petsc-dev libopenmpi-dev openmpi-bin     # the PETSc back end under mpirun (docs/distributed.md)
 )
 
 scripts/install_missing.sh setup "${packages[@]}"

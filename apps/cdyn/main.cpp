@@ -3,11 +3,16 @@
 // Parses the subcommand with CLI11 and hands over to commands.hpp.  The exit status
 // contract: 0 success, 2 bad input (one line on stderr naming the key or file),
 // 3 numerical failure (reported, never silently continued).
+//
+// Under `mpirun -n P` (P > 1) rank 0 runs the command and the other ranks serve the
+// distributed step solves of the PETSc back end (qp/petsc/backend.hpp,
+// docs/distributed.md); only rank 0 reads the scene, writes and reports.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/version.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
@@ -64,20 +69,33 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  try {
-    if (*run) return cdyn::app::cmd_run(run_options);
-    if (*study) return cdyn::app::cmd_study(study_options);
-    if (*wellposed) {
-      wp_options.sets = cdyn::app::command_line_paths(wp_options.sets);
-      return cdyn::app::cmd_wellposed(wp_options);
+  if (cdyn::petsc::launched_in_parallel()) {
+    try {
+      cdyn::petsc::initialize();
+    } catch (const cdyn::InputError& e) {
+      std::cerr << "cdyn: error: " << e.what() << "\n";
+      return 2;
     }
-    if (*mesh) return cdyn::app::cmd_mesh(mesh_file, mesh_sets);
-  } catch (const cdyn::InputError& e) {
-    std::cerr << "cdyn: error: " << e.what() << "\n";
-    return 2;
-  } catch (const cdyn::NumericalError& e) {
-    std::cerr << "cdyn: numerical failure: " << e.what() << "\n";
-    return 3;
+    if (cdyn::petsc::rank() != 0) return cdyn::petsc::end_process(cdyn::petsc::serve());
   }
-  return 0;
+  auto command = [&]() -> int {
+    try {
+      if (*run) return cdyn::app::cmd_run(run_options);
+      if (*study) return cdyn::app::cmd_study(study_options);
+      if (*wellposed) {
+        wp_options.sets = cdyn::app::command_line_paths(wp_options.sets);
+        return cdyn::app::cmd_wellposed(wp_options);
+      }
+      if (*mesh) return cdyn::app::cmd_mesh(mesh_file, mesh_sets);
+    } catch (const cdyn::InputError& e) {
+      std::cerr << "cdyn: error: " << e.what() << "\n";
+      return 2;
+    } catch (const cdyn::NumericalError& e) {
+      std::cerr << "cdyn: numerical failure: " << e.what() << "\n";
+      return 3;
+    }
+    return 0;
+  };
+  // (rank 0 tells the other ranks to quit, if any, and PETSc ends, if it was started)
+  return cdyn::petsc::end_process(command());
 }

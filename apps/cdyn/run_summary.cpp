@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cdyn/problems/data_work.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 #include "commands.hpp"
 #include "exact_solution.hpp"
 
@@ -22,6 +23,9 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   j["full_steps"] = to_string(sim.scheme->full_steps());
   j["solver"] = sim.solver_name;
   j["solver_tol"] = sim.tol;
+  // the back end and its processes (docs/distributed.md): rank 0 and the ranks serving it
+  j["backend"] = sim.spec.solver.backend;
+  j["ranks"] = petsc::size();
   j["threads"] = sim.threads;
   j["blas_threads"] = sim.blas_threads > 0 ? nlohmann::ordered_json(sim.blas_threads) : nlohmann::ordered_json();
   j["n_dofs"] = p.W->n_dofs();
@@ -103,11 +107,15 @@ void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, c
                   r.totals.friction_work);
   const int per = std::max(r.steps_done, 1);
   const double wall = r.totals.wall_seconds;
+  std::string solver = sim.solver_name;
+  if (sim.spec.solver.backend != "native")
+    solver += " on " + sim.spec.solver.backend + " (" + std::to_string(petsc::size()) + " rank" +
+              (petsc::size() == 1 ? ")" : "s)");
   std::printf(
       "cdyn run %s: %s, %s, %s, solver %s.%s%s\n  %d dofs (%d free, %d constrained), %d steps of dt = %g to T = %g in "
       "%.3f s on %d thread%s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "
       "violation %.2e.\n  Condition (12): %s.\n",
-      sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), sim.solver_name.c_str(),
+      sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), solver.c_str(),
       r.partial ? "\n  " : "", label.c_str(), p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()),
       r.steps_done, sim.dt, r.state.t, wall, sim.threads, sim.threads == 1 ? "" : "s", wall / per,
       r.totals.qp_iterations / per, r.E0, r.E_final, energy,

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 #include "expression.hpp"
 
 namespace cdyn::app {
@@ -329,6 +330,25 @@ void read_boundary(const Scene& s, SceneSpec& spec) {
   spec.initial.v = expressions(s, "initial.v", nc);
 }
 
+// solver.backend and solver.pc (docs/distributed.md).  The keys of the native pdas's
+// linear solves have no meaning on the PETSc back end, whose pdas solves by CG with
+// solver.pc: refused there, as solver.pc is on the native back end.
+void read_backend(const Scene& s, SceneSpec::Solver& v) {
+  v.backend = s.string("solver.backend", "native");
+  if (v.backend != "native" && v.backend != "petsc")
+    throw InputError("solver.backend: expected \"native\" or \"petsc\" (got '" + v.backend + "')");
+  if (v.backend == "petsc" && !petsc::built())
+    throw InputError("solver.backend: this cdyn was built without PETSc (CDYN_WITH_PETSC=OFF)");
+  v.pc = s.string("solver.pc", "");
+  if (v.backend == "native" && s.has("solver.pc"))
+    throw InputError("solver.pc: the preconditioner of the petsc back end (set solver.backend = \"petsc\")");
+  if (v.backend == "petsc")
+    for (const char* key : {"solver.linear", "solver.cg_iterations", "solver.free_block"})
+      if (s.has(key))
+        throw InputError(std::string(key) + ": a setting of the native pdas; the petsc back end solves by CG with "
+                                            "solver.pc");
+}
+
 void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   SceneSpec::Time& t = spec.time;
   t.dt = s.number("time.dt");
@@ -384,6 +404,7 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   if (linear == "cg" && v.name != "pdas")
     throw InputError("solver.linear: the CG path is pdas's (solver.name = " + v.name + ")");
   v.options.pdas_cg_only = linear == "cg";
+  read_backend(s, v);
   v.threads = s.integer("solver.threads", 0);
   if (v.threads < 0)
     throw InputError("solver.threads: must be 0 (the environment's count, OMP_NUM_THREADS) or a number of threads ≥ 1");
@@ -469,7 +490,8 @@ std::string scene_key(const std::string& parameter, const SceneSpec& spec, const
       {"normal", "obstacle.normal"}, {"contact", "obstacle.where"}, {"dt", "time.dt"},
       {"beta", "time.beta"},     {"gamma", "time.gamma"},           {"restitution", "time.restitution"},
       {"scheme", "time.scheme"}, {"tol", "solver.tol"},             {"max_iterations", "solver.max_iterations"},
-      {"solver", "solver.name"}, {"mesh", "mesh.kind"},         {"linear", "solver.linear"}};
+      {"solver", "solver.name"}, {"mesh", "mesh.kind"},         {"linear", "solver.linear"},
+      {"pc", "solver.pc"},       {"solver.backend", "solver.backend"}};
   if (const auto it = fixed.find(parameter); it != fixed.end()) return it->second;
   // gmsh parameters of the .geo (meshing/cdyn/gmsh_mesh.hpp)
   if (parameter.rfind("setnumber.", 0) == 0) return "mesh.set." + parameter.substr(10);

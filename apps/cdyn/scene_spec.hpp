@@ -113,6 +113,10 @@ struct SceneSpec {
     std::string name = "pdas";
     QPOptions options;
     int threads = 0;  // solver.threads: the kernel's loops (0: the environment's count, OMP_NUM_THREADS)
+    // solver.backend: "native" (the kernel's solvers, one process) or "petsc" (the step QP
+    // on the ranks of mpirun, qp/petsc/petsc_step_solver.hpp); solver.pc: the
+    // preconditioner of its Krylov solves (empty: the solver's default)
+    std::string backend = "native", pc;
   } solver;
 
   // `units`: the names of the units of length, force and time the scene's numbers are

@@ -10,6 +10,7 @@
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/problems/oscillator.hpp"
 #include "cdyn/problems/scalar_wave.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 #include "diagnostics.hpp"
 
 namespace cdyn::app {
@@ -247,6 +248,27 @@ Mesh make_mesh(const SceneSpec& s) {
   });
 }
 
+// The step solver of solver.name on solver.backend.
+std::unique_ptr<StepSolver> make_solver(const SceneSpec::Solver& v) {
+  if (v.backend == "petsc") return petsc::make_petsc_step_solver(v.name, v.options, v.pc);
+  return make_step_solver(v.name, v.options);
+}
+
+// What the PETSc back end takes (docs/distributed.md): an explicit step matrix and no
+// friction; and what a run under mpirun takes: that back end.
+void check_backend(const Simulation& sim) {
+  const SceneSpec::Solver& v = sim.spec.solver;
+  if (v.backend == "native" && petsc::launched_in_parallel())
+    throw InputError("solver.backend: \"native\" runs on one process; under mpirun with more than one, set "
+                     "solver.backend = \"petsc\"");
+  if (v.backend != "petsc") return;
+  if (!sparse_mass(*sim.problem.mass))
+    throw InputError("solver.backend: the petsc back end needs an explicit step matrix; with " + sim.pair +
+                     " the step is in saddle form (H^h continuous): use solver.backend = \"native\"");
+  if (!sim.problem.friction.empty())
+    throw InputError("solver.backend: the petsc back end has no friction solver; use solver.backend = \"native\"");
+}
+
 Simulation make_simulation(const SceneSpec& spec) {
   Simulation sim;
   sim.spec = spec;
@@ -282,8 +304,9 @@ Simulation make_simulation(const SceneSpec& spec) {
     throw InputError("solver.linear: the CG path needs an explicit step matrix; with " + sim.pair +
                      " the step is in saddle form (H^h continuous), solved by UMFPACK: use solver.linear = \"factor\"");
   sim.tol = s.solver.options.tol;
+  check_backend(sim);
   with_scene_keys(s, [&] {
-    sim.solver = make_step_solver(sim.solver_name, s.solver.options);
+    sim.solver = make_solver(s.solver);
     sim.scheme = make_time_scheme(sim.scheme_name, p, *sim.solver, sim.dt, s.time.parameters);
   });
 

@@ -73,6 +73,8 @@
 #include "cdyn/qp/pdas/reduced_system.hpp"
 #include "cdyn/qp/pdas/reference_pdas.hpp"
 #include "cdyn/qp/pdas/saddle_reduced_system.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
+#include "cdyn/qp/petsc/plugin_table.hpp"
 #include "cdyn/qp/pgs.hpp"
 #include "cdyn/qp/quadratic_form.hpp"
 #include "cdyn/qp/rotated_qp.hpp"

@@ -1,0 +1,95 @@
+#!/usr/bin/python3
+"""bench_mpi.py — the PETSc back end on this machine's cores: strong scaling of the step
+QP and what it exchanges (docs/distributed.md, "Measured").
+
+Usage: bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR [--sizes 16,32] [--pcs gamg,jacobi]
+
+The scene: data/scenes/cube_3d.toml, the unit cube falling onto a plane (as
+bench_three_d.py: dt = h/2, 16 steps, contact from step 6 on), P1+/P0 midpoint with the
+bubbles condensed.  For each size, one run of each of
+  - native pdas (the Cholesky factor, CG while the active set moves) and the native
+    CG path (solver.linear = "cg"),
+  - petsc pdas on 1 and on 2 ranks, for each preconditioner,
+reporting the mean over the contact window (steps 6–16) of history.csv's solve_s (the
+step QP) and step_s (the whole step), the strong-scaling speed-up and efficiency of the
+QP on 2 ranks, and the peak memory of each process (/usr/bin/time, the largest rank).
+One thread per process.  With --log, one more run on 2 ranks with PETSc's -log_view,
+whose summary gives the messages and reductions a step's QP makes (the weak-scaling
+model's inputs): printed after the table.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+
+WINDOW = (6, 16)
+
+
+def scene(n):
+    h = 1.0 / n
+    return [f"mesh.n={n}", f"obstacle.point=[0, 0, {-h / 2!r}]", f"time.dt={h / 2!r}", f"time.T={16 * h / 2!r}",
+            "output.probes={}", "output.wellposed=false", "method.pair=P1+/P0", "time.scheme=midpoint"]
+
+
+def run(a, out, ranks, sets, extra_env=None):
+    timed = ["/usr/bin/time", "-f", "peak_kB %M", a.cdyn, "run", a.scene, "--out", out, "--quiet",
+             "--set", "output.fields=false", "--set", "output.plots=false"]
+    args = ([a.mpiexec, "--oversubscribe", "-n", str(ranks)] if ranks else []) + timed
+    for s in sets:
+        args += ["--set", s]
+    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", **(extra_env or {}))
+    p = subprocess.run(args, check=True, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    peak_kB = max(int(k) for k in re.findall(r"peak_kB (\d+)", p.stderr))
+    with open(os.path.join(out, "history.csv")) as f:
+        rows = [r for r in csv.DictReader(f) if WINDOW[0] <= int(r["step"]) <= WINDOW[1]]
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    mean = lambda key: sum(float(r[key]) for r in rows) / len(rows)  # noqa: E731
+    return mean("solve_s"), mean("step_s"), peak_kB, summary, p.stdout
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("cdyn")
+    ap.add_argument("mpiexec")
+    ap.add_argument("source")
+    ap.add_argument("out")
+    ap.add_argument("--sizes", default="16,32")
+    ap.add_argument("--pcs", default="gamg,jacobi")
+    ap.add_argument("--log", action="store_true")
+    a = ap.parse_args()
+    a.scene = os.path.join(a.source, "data", "scenes", "cube_3d.toml")
+    print("| n | unknowns | back end | ranks | QP (s/step) | step (s/step) | QP speed-up | efficiency | peak memory per process (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for n in [int(s) for s in a.sizes.split(",")]:
+        base = scene(n)
+        for label, sets in (("native factor", []), ("native cg", ["solver.linear=cg"])):
+            qp, step, peak, summary, _ = run(a, os.path.join(a.out, f"n{n}_{label.replace(' ', '_')}"), 0, base + sets)
+            print(f"| {n} | {summary['n_free']} | {label} | 1 | {qp:.4g} | {step:.4g} | | | {peak / 1024:.0f} |", flush=True)
+        for pc in a.pcs.split(","):
+            one = None
+            for ranks in (1, 2):
+                sets = base + ["solver.backend=petsc", f"solver.pc={pc}"]
+                qp, step, peak, summary, _ = run(a, os.path.join(a.out, f"n{n}_petsc_{pc}_{ranks}"), ranks, sets)
+                one = one or qp
+                speedup = f"{one / qp:.2f} | {one / qp / ranks:.2f}" if ranks > 1 else " | "
+                print(f"| {n} | {summary['n_free']} | petsc pdas {pc} | {ranks} | {qp:.4g} | {step:.4g} | {speedup} "
+                      f"| {peak / 1024:.0f} |", flush=True)
+    if a.log:
+        n = int(a.sizes.split(",")[-1])
+        *_, out = run(a, os.path.join(a.out, f"n{n}_log"), 2, scene(n) + ["solver.backend=petsc"],
+                      {"PETSC_OPTIONS": "-log_view"})
+        keep = re.compile(r"^(Summary of Stages|Time \(sec\)|MPI Msg|MPI Reductions|MatMult |VecTDot|VecNorm|"
+                          r"KSPSolve|PCSetUp|PCApply|MatZeroRowsCol|Event |Max |-----)")
+        print("\nPETSc -log_view (2 ranks, n = %d), the lines the model uses:" % n)
+        for line in out.splitlines():
+            if keep.match(line):
+                print("    " + line)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,97 @@
+// backend.cpp — opening the PETSc back end's plugin and calling it; see
+// qp/petsc/backend.hpp.
+#include "cdyn/qp/petsc/backend.hpp"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include "cdyn/base/error.hpp"
+#include "cdyn/qp/petsc/plugin_table.hpp"
+
+namespace cdyn::petsc {
+
+namespace {
+
+int env_int(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : 0;
+}
+
+// Where the plugin may be, in the order tried.
+std::vector<std::filesystem::path> plugin_candidates() {
+  std::vector<std::filesystem::path> out;
+  if (const char* file = std::getenv("CDYN_PETSC_PLUGIN")) out.emplace_back(file);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) out.push_back(exe.parent_path().parent_path() / "lib" / "cdyn" / "libcdyn_petsc.so");
+#ifdef CDYN_PETSC_PLUGIN_BUILD
+  out.emplace_back(CDYN_PETSC_PLUGIN_BUILD);
+#endif
+  return out;
+}
+
+const PluginTable* opened = nullptr;
+
+const PluginTable& plugin() {
+  if (opened) return *opened;
+#ifndef CDYN_WITH_PETSC
+  throw InputError("solver.backend", "this cdyn was built without PETSc (CDYN_WITH_PETSC=OFF)");
+#else
+  std::string tried;
+  for (const auto& file : plugin_candidates()) {
+    if (!std::filesystem::exists(file)) continue;
+    // RTLD_DEEPBIND: PETSc and MPI resolve among themselves first (plugin_table.hpp)
+    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND);
+    if (!handle) {
+      tried += std::string(tried.empty() ? "" : "; ") + dlerror();
+      continue;
+    }
+    auto entry = reinterpret_cast<const PluginTable* (*)()>(dlsym(handle, "cdyn_petsc_plugin"));
+    if (!entry || entry()->version != kPluginVersion) {
+      tried += (tried.empty() ? "" : "; ") + file.string() + ": not this cdyn's PETSc plugin";
+      continue;
+    }
+    opened = entry();
+    return *opened;
+  }
+  throw InputError("solver.backend", "the PETSc plugin libcdyn_petsc.so was not found or not opened (" +
+                                         (tried.empty() ? std::string("set CDYN_PETSC_PLUGIN to its path") : tried) +
+                                         ")");
+#endif
+}
+
+}  // namespace
+
+bool launched_in_parallel() { return env_int("OMPI_COMM_WORLD_SIZE") > 1 || env_int("PMI_SIZE") > 1; }
+
+bool built() {
+#ifdef CDYN_WITH_PETSC
+  return true;
+#else
+  return false;
+#endif
+}
+
+void initialize() { plugin().initialize(); }
+int rank() { return opened ? opened->rank() : 0; }
+int size() { return opened ? opened->size() : 1; }
+int serve() { return plugin().serve(); }
+
+int end_process(int status) {
+  if (!opened) return status;
+  opened->finalize();
+  std::cout.flush(), std::cerr.flush(), std::fflush(nullptr);
+  std::_Exit(status);
+}
+
+std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, const QPOptions& options,
+                                                   const std::string& preconditioner) {
+  return std::unique_ptr<StepSolver>(plugin().make_solver(name, options, preconditioner));
+}
+
+}  // namespace cdyn::petsc

@@ -1,0 +1,48 @@
+// qp/petsc/backend.hpp — the PETSc back end as the program sees it: the step QP solved
+// on the ranks of `mpirun -n P cdyn run SCENE` (docs/distributed.md).
+//
+// The back end is a plugin, libcdyn_petsc.so (qp/petsc/plugin_table.hpp says why),
+// opened on first use: from $CDYN_PETSC_PLUGIN if set, else next to an installed program
+// (PREFIX/lib/cdyn/), else in the build tree.  Nothing here includes PETSc or MPI, and a
+// serial run on the native back end never opens it.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "cdyn/qp/step_solver.hpp"
+
+namespace cdyn::petsc {
+
+// The environment of a process started by mpirun (OMPI_COMM_WORLD_SIZE, or PMI_SIZE for
+// MPICH's launcher) with more than one process.  Read before MPI is initialized.
+bool launched_in_parallel();
+
+// Whether this build has the back end (CDYN_WITH_PETSC).
+bool built();
+
+// MPI and PETSc, once (InputError naming solver.backend when the plugin cannot be
+// opened or PETSc cannot start).  rank() and size(): 0 and 1 before.
+void initialize();
+int rank();
+int size();
+
+// Ranks ≥ 1 of a parallel run: take part in rank 0's collective step solves until it
+// says quit; returns the exit status.
+int serve();
+
+// The end of a process that may have opened the back end: rank 0 tells the others to
+// quit, PETSc and MPI are finalized, and the process ends with `status` at once, after
+// flushing the standard streams, without running the destructors of static objects —
+// those of the C++ libraries PETSc brings (Trilinos's Teuchos) would flush an std::cout
+// they see unconstructed under RTLD_DEEPBIND (plugin_table.hpp).  Without the back end
+// opened, returns `status` (a normal exit).
+int end_process(int status);
+
+// A step solver of the back end (qp/petsc/petsc_step_solver.hpp): name pdas,
+// tao_tron, tao_gpcg, tao_bqnls, tao_bncg or snesvi; preconditioner gamg (pdas only),
+// hypre or jacobi, empty for the default (gamg for pdas, jacobi for the others).
+std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, const QPOptions& options,
+                                                   const std::string& preconditioner = "");
+
+}  // namespace cdyn::petsc

@@ -1,0 +1,34 @@
+// qp/petsc/plugin_table.hpp — what the PETSc back end's plugin (libcdyn_petsc.so) gives
+// the program that loads it (qp/petsc/backend.hpp): one table of functions.
+//
+// Why a plugin.  Debian's Ipopt is built on the sequential MUMPS, whose library defines
+// a stand-in MPI (MPI_Comm_rank answering 0, ...) under MPI's own names.  In a process
+// that has loaded it, PETSc's calls to MPI would reach those stand-ins unless PETSc is
+// loaded apart: the plugin is opened with RTLD_LOCAL | RTLD_DEEPBIND, so that it and
+// the libraries it brings (PETSc, OpenMPI, the parallel MUMPS) look up their symbols
+// among themselves first.
+#pragma once
+
+#include <string>
+
+#include "cdyn/qp/step_solver.hpp"
+
+namespace cdyn::petsc {
+
+struct PluginTable {
+  int version;  // kPluginVersion of the plugin's build
+  void (*initialize)();
+  int (*rank)();
+  int (*size)();
+  int (*serve)();
+  void (*finalize)();
+  // a new StepSolver (the caller owns it); InputError for an unknown name or preconditioner
+  StepSolver* (*make_solver)(const std::string& name, const QPOptions& options, const std::string& preconditioner);
+};
+
+constexpr int kPluginVersion = 1;
+
+}  // namespace cdyn::petsc
+
+// The plugin's one exported symbol.
+extern "C" const cdyn::petsc::PluginTable* cdyn_petsc_plugin();

@@ -1,0 +1,28 @@
+// kernel/plugins/petsc/petsc_step_solver.hpp — the step QP solvers of the PETSc back end, on rank 0
+// (inside the plugin; the program makes them through qp/petsc/backend.hpp).
+//
+// They see what every step solver sees (qp/step_solver.hpp: S, r and the bounds) and
+// solve it on all the ranks of the session (kernel/plugins/petsc/session.hpp), the rows of S spread
+// over them (kernel/plugins/petsc/distributed_qp.hpp):
+//   pdas       primal-dual active set (Hintermüller–Ito–Kunisch), CG on each reduced
+//              system with GAMG, BoomerAMG (hypre) or Jacobi;
+//   tao_tron, tao_gpcg, tao_bqnls, tao_bncg   TAO's bound-constrained minimizers;
+//   snesvi     SNES's reduced-space active set method for the KKT conditions;
+// the last two families finish with active-set iterations to the common tol.  Every
+// result is measured on rank 0 by the kernel's one KKT residual (qp/kkt.hpp) and a result
+// above tol is a NumericalError, as for the serial solvers.  S must be explicit (the
+// saddle form is InputError).
+#pragma once
+
+#include <string>
+
+#include "cdyn/qp/step_solver.hpp"
+
+namespace cdyn::petsc {
+
+// name: pdas, tao_tron, tao_gpcg, tao_bqnls, tao_bncg or snesvi; preconditioner: gamg
+// (pdas only), hypre or jacobi, empty for the default (gamg for pdas, jacobi for the
+// others); InputError otherwise.  Starts the session if it is not yet.
+StepSolver* new_petsc_step_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner);
+
+}  // namespace cdyn::petsc

@@ -1,0 +1,73 @@
+// session.cpp — MPI and PETSc for a run on the PETSc back end; see session.hpp.
+#include "session.hpp"
+
+#include <csignal>
+#include <cstdlib>
+#include <string>
+
+#include "cdyn/base/error.hpp"
+#include "distributed_qp.hpp"
+
+namespace cdyn::petsc::session {
+
+namespace {
+
+bool started = false;
+
+}  // namespace
+
+void start() {
+  if (started) return;
+  if (PetscInitializeNoArguments() != 0) throw InputError("solver.backend: PETSc (and MPI) could not be initialized");
+  // Errors come back as codes, turned into one-line exceptions (distributed_qp.cpp),
+  // instead of PETSc's tracebacks on every rank.
+  if (!std::getenv("CDYN_PETSC_TRACE")) PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
+  started = true;
+}
+
+int rank() {
+  int r = 0;
+  if (started) MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+  return r;
+}
+
+int size() {
+  int s = 1;
+  if (started) MPI_Comm_size(PETSC_COMM_WORLD, &s);
+  return s;
+}
+
+int serve() {
+  std::signal(SIGINT, SIG_IGN);
+  DistributedQP& q = petsc::the_distributed_qp();
+  for (;;) {
+    switch (receive()) {
+      case Command::quit:
+        return 0;
+      case Command::clear:
+        q.clear();
+        break;
+      case Command::solve:
+        try {
+          SolveSettings settings;
+          q.receive(settings, nullptr, nullptr);
+          solve_collectively(q, settings);
+        } catch (const std::exception&) {
+          // the failures of a collective solve are the same on every rank: rank 0 reports
+          // it and goes on (or stops and says quit)
+        }
+        q.gather_solution();  // as rank 0 does, failed or not
+        break;
+    }
+  }
+}
+
+void finish() {
+  if (!started) return;
+  if (rank() == 0 && size() > 1) send(Command::quit);
+  the_distributed_qp().clear();
+  PetscFinalize();
+  started = false;
+}
+
+}  // namespace cdyn::petsc::session

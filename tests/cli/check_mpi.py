@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""check_mpi.py — `mpirun -n P cdyn run` on the PETSc back end (docs/distributed.md).
+
+Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
+
+ 1. The seed's membrane through its impact, the elastic disk's impact and the prism in
+    space (P1+/P0 midpoint, tol = 1e-12): the PETSc back end on one process and on two
+    gives the native run's history — energies, active counts, probes — to 1e-9 of
+    each column's largest value; summary.json says `backend` and `ranks`.
+ 2. TAO's TRON and SNESVI on two processes: the same.
+ 3. Errors: one line from rank 0 and exit status 2 — the native back end under mpirun
+    -n 2, a saddle-form pair, friction, solver.pc on the native back end, solver.linear
+    on the petsc one.
+Only the standard library is used.
+"""
+import csv
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_helpers import QUIET, check, failures  # noqa: E402
+
+cdyn, mpiexec, src, work = sys.argv[1:5]
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
+TIMING = {"step", "t", "solve_s", "step_s", "qp_iters"}
+SCENES = {
+    "membrane": ["", "time.T=0.3"],
+    "disk": [os.path.join(src, "data/scenes/disk.toml"), "time.T=2e-3"],
+    "prism_3d": [os.path.join(src, "data/scenes/prism_3d.toml"), "time.T=1.5"],
+}
+
+
+def command(ranks, scene, out, sets):
+    args = ([mpiexec, "--oversubscribe", "-n", str(ranks)] if ranks else []) + [cdyn, "run"]
+    args += ([scene] if scene else []) + ["--out", out] + QUIET
+    for s in sets:
+        args += ["--set", s]
+    return args
+
+
+def run(name, ranks, scene, sets):
+    out = os.path.join(work, name)
+    shutil.rmtree(out, ignore_errors=True)
+    subprocess.run(command(ranks, scene, out, sets), check=True, env=ENV)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    with open(os.path.join(out, "history.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    return summary, rows
+
+
+def vector_of(key):
+    """The vector a column is a component of: px → p, uy@bottom → u@bottom."""
+    return re.sub(r"^([uvp])[xyz]", r"\1", key)
+
+
+def largest_difference(a, b):
+    """max over the columns (timings aside) of max |a − b| / max |a|, a vector's
+    components measured against the whole vector (a momentum or a velocity component
+    that is zero by symmetry holds only round-off)."""
+    worst, where = 0.0, ""
+    for key in a[0]:
+        if key in TIMING:
+            continue
+        scale = max(abs(float(r[k])) for r in a for k in a[0] if vector_of(k) == vector_of(key)) or 1.0
+        d = max(abs(float(x[key]) - float(y[key])) for x, y in zip(a, b)) / scale
+        if d > worst:
+            worst, where = d, key
+    return worst, where
+
+
+for scene, (path, *sets) in SCENES.items():
+    sets = sets + ["solver.tol=1e-12"]
+    _, native = run(scene + "-native", 0, path, sets)
+    for ranks in (1, 2):
+        summary, rows = run(f"{scene}-petsc{ranks}", ranks, path, sets + ["solver.backend=petsc"])
+        d, key = largest_difference(native, rows)
+        check(len(rows) == len(native) and d <= 1e-9,
+              f"{scene}: petsc on {ranks} rank(s) = native ({len(rows)} rows, largest difference {d:.1e} in {key})")
+        check(summary["backend"] == "petsc" and summary["ranks"] == ranks, f"{scene}: summary.json backend, ranks")
+
+_, native = run("membrane-native", 0, "", ["time.T=0.3", "solver.tol=1e-12"])
+for name in ("tao_tron", "snesvi"):
+    _, rows = run("membrane-" + name, 2, "", ["time.T=0.3", "solver.tol=1e-12", "solver.backend=petsc",
+                                                 "solver.name=" + name])
+    d, key = largest_difference(native, rows)
+    check(d <= 1e-9, f"membrane: petsc {name} on 2 ranks = native (largest difference {d:.1e} in {key})")
+
+ERRORS = {
+    "the native back end under mpirun -n 2": ("", [], "solver.backend"),
+    "a saddle-form pair": ("", ["solver.backend=petsc", "method.pair=P2/P1"], "solver.backend"),
+    "friction": (os.path.join(src, "data/scenes/incline_block.toml"), ["solver.backend=petsc"], "solver.backend"),
+    "solver.pc on the native back end": ("", ["solver.pc=jacobi"], "solver.pc"),
+    "solver.linear on the petsc back end": ("", ["solver.backend=petsc", "solver.linear=cg"], "solver.linear"),
+}
+for what, (scene, sets, key) in ERRORS.items():
+    ranks = 2 if what != "solver.pc on the native back end" else 0
+    done = subprocess.run(command(ranks, scene, os.path.join(work, "error"), sets + ["time.T=0.01"]), env=ENV,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+    check(done.returncode == 2 and len(mine) == 1 and mine[0].startswith("cdyn: error: " + key),
+          f"{what}: exit {done.returncode}, {mine}")
+
+if failures:
+    sys.exit(f"{len(failures)} check(s) failed")
