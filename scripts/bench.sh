@@ -50,4 +50,8 @@ echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, 
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 echo "== (k) three dimensions: the cube's contact step against its unknowns, the factor and the CG path"
 $PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24,32
+if [ -f "$BUILD/kernel/libcdyn_petsc.so" ]; then
+  echo "== (l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 5 minutes"
+  $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 16,32 --pcs jacobi --log
+fi
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -92,7 +92,6 @@ void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QP
   if (settings.matrix_changed || settings.n != n) {
     clear();
     n = settings.n;
-    first = first_row[me], last = first_row[me + 1];
     // The rows of S: per-row counts, then column indices and values by blocks.
     std::vector<int> row_nnz(qp ? n : 0), counts(p), displs(p);
     if (qp) {
@@ -113,23 +112,62 @@ void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QP
                  MPI_INT, 0, world());
     MPI_Scatterv(qp ? qp->S.valuePtr() : nullptr, counts.data(), displs.data(), MPI_DOUBLE, a.data(), counts[me],
                  MPI_DOUBLE, 0, world());
-    check(MatCreateMPIAIJWithArrays(world(), local, local, n, n, i.data(), j.data(), a.data(), &S),
+    Mat S_natural = nullptr;
+    check(MatCreateMPIAIJWithArrays(world(), local, local, n, n, i.data(), j.data(), a.data(), &S_natural),
           "MatCreateMPIAIJWithArrays");
+    partition(S_natural);
     check(MatSetOption(S, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
     check(MatSetOption(S, MAT_SPD, PETSC_TRUE), "MatSetOption");
-    r = new_vector(local, n), lower = new_vector(local, n), upper = new_vector(local, n);
-    X = new_vector(local, n), reaction = new_vector(local, n);
+    PetscInt mine = 0;
+    check(MatGetLocalSize(S, &mine, nullptr), "MatGetLocalSize");
+    check(MatGetOwnershipRange(S, &first, &last), "MatGetOwnershipRange");
+    r = new_vector(mine, n), lower = new_vector(mine, n), upper = new_vector(mine, n);
+    X = new_vector(mine, n), reaction = new_vector(mine, n);
+    natural = new_vector(local, n);
+    check(VecScatterCreate(natural, rows, r, nullptr, &to_rows), "VecScatterCreate");
   }
-  scatter(qp ? &qp->r : nullptr, first_row, r);
-  scatter(qp ? &qp->lower : nullptr, first_row, lower);
-  scatter(qp ? &qp->upper : nullptr, first_row, upper);
+  // rank 0's vector → the natural blocks → this rank's partitioned rows
+  auto distribute = [&](const Eigen::VectorXd* v, Vec x) {
+    scatter(v, first_row, natural);
+    check(VecScatterBegin(to_rows, natural, x, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(to_rows, natural, x, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  };
+  distribute(qp ? &qp->r : nullptr, r);
+  distribute(qp ? &qp->lower : nullptr, lower);
+  distribute(qp ? &qp->upper : nullptr, upper);
   if (settings.warm) {
-    scatter(warm ? &warm->X : nullptr, first_row, X);
-    scatter(warm ? &warm->reaction : nullptr, first_row, reaction);
+    distribute(warm ? &warm->X : nullptr, X);
+    distribute(warm ? &warm->reaction : nullptr, reaction);
   } else {
     check(VecSet(X, 0.0), "VecSet");
     check(VecSet(reaction, 0.0), "VecSet");
   }
+}
+
+void DistributedQP::partition(Mat S_natural) {
+  int p = 1;
+  MPI_Comm_size(world(), &p);
+  PetscInt local = 0, begin = 0;
+  check(MatGetLocalSize(S_natural, &local, nullptr), "MatGetLocalSize");
+  check(MatGetOwnershipRange(S_natural, &begin, nullptr), "MatGetOwnershipRange");
+  if (p == 1) {  // nothing to balance: the natural order
+    check(ISCreateStride(world(), local, begin, 1, &rows), "ISCreateStride");
+    S = S_natural;
+    return;
+  }
+  MatPartitioning part = nullptr;
+  IS owner = nullptr;
+  check(MatPartitioningCreate(world(), &part), "MatPartitioningCreate");
+  check(MatPartitioningSetAdjacency(part, S_natural), "MatPartitioningSetAdjacency");
+  check(MatPartitioningSetType(part, MATPARTITIONINGPTSCOTCH), "MatPartitioningSetType");
+  check(MatPartitioningSetFromOptions(part), "MatPartitioningSetFromOptions");
+  check(MatPartitioningApply(part, &owner), "MatPartitioningApply");  // the new rank of each local row
+  check(ISBuildTwoSided(owner, nullptr, &rows), "ISBuildTwoSided");   // the rows this rank receives
+  check(ISSort(rows), "ISSort");
+  check(MatCreateSubMatrix(S_natural, rows, rows, MAT_INITIAL_MATRIX, &S), "MatCreateSubMatrix");
+  ISDestroy(&owner);
+  MatPartitioningDestroy(&part);
+  MatDestroy(&S_natural);
 }
 
 Eigen::VectorXd DistributedQP::gather_solution() const {
@@ -138,17 +176,24 @@ Eigen::VectorXd DistributedQP::gather_solution() const {
   std::vector<int> counts(p), displs(p);
   for (int k = 0; k < p; ++k) counts[k] = first_row[k + 1] - first_row[k], displs[k] = first_row[k];
   Eigen::VectorXd out = comm_rank() == 0 ? Eigen::VectorXd(n) : Eigen::VectorXd();
+  // this rank's partitioned rows → the natural blocks → rank 0
+  check(VecScatterBegin(to_rows, X, natural, INSERT_VALUES, SCATTER_REVERSE), "VecScatterBegin");
+  check(VecScatterEnd(to_rows, X, natural, INSERT_VALUES, SCATTER_REVERSE), "VecScatterEnd");
   const PetscScalar* local = nullptr;
-  check(VecGetArrayRead(X, &local), "VecGetArrayRead");
-  MPI_Gatherv(local, last - first, MPI_DOUBLE, out.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, world());
-  check(VecRestoreArrayRead(X, &local), "VecRestoreArrayRead");
+  check(VecGetArrayRead(natural, &local), "VecGetArrayRead");
+  MPI_Gatherv(local, counts[comm_rank()], MPI_DOUBLE, out.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,
+              world());
+  check(VecRestoreArrayRead(natural, &local), "VecRestoreArrayRead");
   return out;
 }
 
 void DistributedQP::clear() {
   if (S) MatDestroy(&S);
   S = nullptr;
-  for (Vec* v : {&r, &lower, &upper, &X, &reaction}) destroy(*v);
+  for (Vec* v : {&r, &lower, &upper, &X, &reaction, &natural}) destroy(*v);
+  if (to_rows) VecScatterDestroy(&to_rows);
+  if (rows) ISDestroy(&rows);
+  to_rows = nullptr, rows = nullptr;
   n = 0;
 }
 

@@ -5,7 +5,7 @@
 // solve it on all the ranks of the session (kernel/plugins/petsc/session.hpp), the rows of S spread
 // over them (kernel/plugins/petsc/distributed_qp.hpp):
 //   pdas       primal-dual active set (Hintermüller–Ito–Kunisch), CG on each reduced
-//              system with GAMG, BoomerAMG (hypre) or Jacobi;
+//              system with Jacobi, GAMG or BoomerAMG (hypre);
 //   tao_tron, tao_gpcg, tao_bqnls, tao_bncg   TAO's bound-constrained minimizers;
 //   snesvi     SNES's reduced-space active set method for the KKT conditions;
 // the last two families finish with active-set iterations to the common tol.  Every
@@ -21,8 +21,8 @@
 namespace cdyn::petsc {
 
 // name: pdas, tao_tron, tao_gpcg, tao_bqnls, tao_bncg or snesvi; preconditioner: gamg
-// (pdas only), hypre or jacobi, empty for the default (gamg for pdas, jacobi for the
-// others); InputError otherwise.  Starts the session if it is not yet.
+// (pdas only), hypre or jacobi, empty for the default (jacobi); InputError otherwise.
+// Starts the session if it is not yet.
 StepSolver* new_petsc_step_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner);
 
 }  // namespace cdyn::petsc

@@ -41,7 +41,7 @@ int end_process(int status);
 
 // A step solver of the back end (qp/petsc/petsc_step_solver.hpp): name pdas,
 // tao_tron, tao_gpcg, tao_bqnls, tao_bncg or snesvi; preconditioner gamg (pdas only),
-// hypre or jacobi, empty for the default (gamg for pdas, jacobi for the others).
+// hypre or jacobi, empty for the default (jacobi).
 std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, const QPOptions& options,
                                                    const std::string& preconditioner = "");
 
