@@ -37,9 +37,8 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
       } else if (s.slip.size() == 0) {  // before the first step
         csv << ",0,0,0";
       } else {
-        const int tangential = problem_.friction[k].tangential[0];
-        csv << "," << (s.reaction.size() ? s.reaction[tangential] : 0.0) << "," << s.slip[k] << ","
-            << s.contact_status[k];
+        csv << "," << (s.reaction.size() ? tangential_force(problem_.friction[k], s.reaction) : 0.0) << ","
+            << s.slip[k] << "," << s.contact_status[k];
       }
     }
     csv << "\n";

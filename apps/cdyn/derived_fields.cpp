@@ -53,10 +53,10 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
     FieldArray slip{"slip", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
     FieldArray status{"contact_status", 1, std::vector<double>(mesh.n_vertices(), -1.0)};
     for (std::size_t k = 0; k < p.friction.size(); ++k) {
-      const int v = p.contact_nodes[p.friction[k].node].vertex, t = p.friction[k].tangential[0];
+      const int v = p.contact_nodes[p.friction[k].node].vertex;
       status.values[v] = 0.0;
       if (!state || state->slip.size() == 0) continue;  // before the first step
-      force.values[v] = state->reaction[t];
+      force.values[v] = tangential_force(p.friction[k], state->reaction);
       slip.values[v] = state->slip[k];
       status.values[v] = state->contact_status[k];
     }

@@ -11,7 +11,7 @@
 //  (iv)  the block sticks when tan θ ≤ μ (no slip at all) and slides otherwise, its
 //        momentum growing like m G (sin θ − μ cos θ) t;
 //  (v)   every step solver gives the same frictional steps; friction is refused where
-//        it is not implemented (3D, schemes without it);
+//        it is not implemented (schemes without it; space: test_friction_3d.cpp);
 //  (vi)  the semismooth Newton method's fallback when its sets cycle, and a restart
 //        from the scheme's memory.
 #include <gtest/gtest.h>
@@ -250,14 +250,6 @@ TEST(Friction, RefusedWhereNotImplemented) {
   EXPECT_EQ(recommended_scheme(bubble), "backward_euler");
   EXPECT_NO_THROW(make_time_scheme("backward_euler", bubble, *solver, 0.01));
 
-  const Mesh cube = unit_cube_mesh(2);
-  ElasticContactData d3 = block(cube, 0.0);
-  try {
-    build_elastic_contact(cube, with_friction(d3, FrictionLaw::Coulomb, 0.3));
-    FAIL() << "friction in space accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.parameter(), "friction");
-  }
   try {
     build_elastic_contact(mesh, with_friction(block(mesh, 0.3), FrictionLaw::Coulomb, -0.1));
     FAIL() << "a negative mu accepted";

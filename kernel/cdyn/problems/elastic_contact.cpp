@@ -287,10 +287,6 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
   // K̄^h.  The contact set (and the rotation) is built even when the obstacle is
   // disabled: the redistributed mass depends on it, and the unconstrained run must
   // keep the same M and the same unknowns.
-  bool friction = false;
-  for (const RigidObstacle& o : obstacles) friction = friction || o.friction.law != FrictionLaw::None;
-  if (friction && dim == 3)
-    throw InputError("friction", "nodal friction is implemented in the plane (2D meshes) only, not yet in space");
   const ContactSet contact = contact_set(mesh, W, *p.bc, p.UD, obstacles, d.rotate_always);
   const double inf = std::numeric_limits<double>::infinity();
   p.lower = Eigen::VectorXd::Constant(A_ff.rows(), -inf);

@@ -1,6 +1,8 @@
 // problems/friction.cpp — the names of the friction laws.
 #include "cdyn/problems/friction.hpp"
 
+#include <cmath>
+
 #include "cdyn/base/error.hpp"
 
 namespace cdyn {
@@ -19,6 +21,13 @@ std::string to_string(FrictionLaw law) {
     case FrictionLaw::Coulomb: return "coulomb";
   }
   return "?";
+}
+
+double tangential_force(const FrictionNode& node, const Eigen::VectorXd& reaction) {
+  if (node.tangential.size() == 1) return reaction[node.tangential[0]];
+  double sum = 0.0;
+  for (int t : node.tangential) sum += reaction[t] * reaction[t];
+  return std::sqrt(sum);
 }
 
 }  // namespace cdyn

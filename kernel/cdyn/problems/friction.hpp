@@ -17,6 +17,7 @@
 // vanishes with λ_N.  The time-discrete form, on the slip of a step, is qp/friction_qp.hpp.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -49,5 +50,10 @@ struct FrictionNode {
   double mu = 0.0;               // Coulomb: μ(a)
   double threshold = 0.0;        // Tresca: s_a = ∫_{Γ_C} s φ_a
 };
+
+// The tangential force λ_T of a friction node from the reaction λ = S X − r: in the
+// plane the signed reaction on its tangential unknown, in space its length |λ_T| in the
+// tangent plane.
+double tangential_force(const FrictionNode& node, const Eigen::VectorXd& reaction);
 
 }  // namespace cdyn

@@ -173,7 +173,8 @@ FrictionResult solve_friction_ipopt(BoundQP& qp, const FrictionConditions& f, co
   const int m = static_cast<int>(f.contacts.size());
   for (const FrictionContact& c : f.contacts)
     if (c.tangential.size() != 1)
-      throw InputError("friction: ipopt takes one tangential unknown per contact node (the plane)");
+      throw InputError("solver", "ipopt's split slips take one tangential unknown per contact node (the plane); in "
+                                 "space, friction is solved by pdas (semismooth Newton) or pgs");
   const Eigen::VectorXd D = scaling_diagonal(qp);
   const int max_outer = options.max_iterations > 0 ? options.max_iterations : 50;
 

@@ -22,6 +22,11 @@ double slip_norm(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen
 
 }  // namespace
 
+double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen::VectorXd& reference) {
+  if (c.tangential.size() == 1) return X[c.tangential[0]] - reference[c.tangential[0]];
+  return slip_norm(c, X, reference);
+}
+
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction) {
   const int m = static_cast<int>(f.contacts.size());
   Eigen::VectorXd s(m);

@@ -72,6 +72,10 @@ struct FrictionResult {
   Eigen::VectorXd direction;
 };
 
+// The slip of contact c from X̂ to X: in the plane the signed increment of its tangential
+// unknown, in space the length |X_T − X̂_T| of the increment in its tangent plane.
+double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen::VectorXd& reference);
+
 // The threshold of each contact: s, or μ max(λ_N, 0) from the reaction λ.
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction);
 

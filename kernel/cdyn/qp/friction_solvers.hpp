@@ -18,7 +18,10 @@
 //    everywhere (the bonded step).  Newton's method for a nonsmooth equation converges
 //    only locally: when a set comes back for the same s, the Tresca problem of s is
 //    solved by solve_friction_pgs below (explicit S) and its sets start the next Newton
-//    step.  It stops when friction_residual ≤ tol.
+//    step.  In space (two tangential unknowns) σ is a unit vector, not one of finitely
+//    many: the Tresca problem counts as solved once its residual is below tol, an
+//    iteration that does not reduce it tenfold counts as a cycle, and the fallback
+//    solves the whole Coulomb problem.  It stops when friction_residual ≤ tol.
 //
 //  - solve_friction_pgs: projected Gauss–Seidel on the unknowns (the nodal form of the
 //    Moreau–Jean NSCD method, M. Jean, CMAME 177 (1999)): each unknown in turn set to
@@ -27,7 +30,9 @@
 //    z the unconstrained minimizer.  For Tresca this is coordinate descent on a strongly
 //    convex function with a separable nonsmooth part, which converges (Tseng 2001);
 //    Coulomb takes s = μ λ_N from the current normal reaction before each tangential
-//    update.  Explicit S only; one tangential unknown per node (the plane).
+//    update.  In space a node's two tangential unknowns are one block, moved by the
+//    proximal gradient step shrink(d − g/L, s/L), L = λ_max of the block of S (a step
+//    that never increases (FQP)).  Explicit S only.
 //
 // A method that does not reach tol throws NumericalError (or, with throw_on_failure =
 // false, returns converged = false): a step is never accepted silently.

@@ -43,9 +43,15 @@ std::vector<Tangential> sets_of(const FrictionConditions& f, const Eigen::Vector
   return sets;
 }
 
+// The same sticking nodes, and slip directions equal to 1e-12 (in the plane σ = ±1:
+// exactly equal or not at all; in space σ is a unit vector of the tangent plane, which
+// the iteration below converges to as a fixed point, not in finitely many steps).
 bool same_sets(const std::vector<Tangential>& a, const std::vector<Tangential>& b) {
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (a[k].stick != b[k].stick || a[k].sigma != b[k].sigma) return false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (a[k].stick != b[k].stick || a[k].sigma.size() != b[k].sigma.size()) return false;
+    for (std::size_t j = 0; j < a[k].sigma.size(); ++j)
+      if (std::abs(a[k].sigma[j] - b[k].sigma[j]) > 1e-12) return false;
+  }
   return true;
 }
 
@@ -79,6 +85,9 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   const Eigen::VectorXd r0 = qp.r, lower0 = qp.lower, upper0 = qp.upper;
   const Eigen::VectorXd D = scaling_diagonal(qp);
   const int m = static_cast<int>(f.contacts.size());
+  const bool in_space = std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) {
+    return c.tangential.size() > 1;
+  });
 
   // Start: the previous step's sets and thresholds; cold, every node sticking (the
   // bonded step, whose λ_N gives Coulomb's first thresholds).
@@ -102,6 +111,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   int inner_iterations = 0, fallbacks = 0;
   std::vector<Tangential> sets_final;
   std::vector<std::vector<Tangential>> visited;  // the sets tried for the current s
+  double last_tresca = std::numeric_limits<double>::infinity();  // the last Tresca residual for s
   std::string detail;
   int it = 0;
   for (;;) {
@@ -130,8 +140,17 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
     // Newton's step for the Tresca problem of the current thresholds s ...
     std::vector<Tangential> next = sets_of(f, last.X, result.qp.reaction, s, D);
     visited.push_back(sets);
+    // (in space the slip directions are not finitely many, and the iteration on them
+    // converges only linearly — measured, a factor 0.3 an iteration on the plate of
+    // test_friction_3d.cpp, each round of Coulomb's thresholds restarting it: a Tresca
+    // residual that does not fall tenfold in an iteration is this method's cycling there)
+    const double tresca_residual = friction_residual(qp, f, last.X, result.qp.reaction, s, D);
+    const bool stalled = in_space && tresca_residual > 0.1 * last_tresca;
+    last_tresca = tresca_residual;
     const bool cold_start = it == 1 && !warm;
-    if (same_sets(next, sets) || cold_start) {
+    // (the Tresca problem of s is solved when the sets repeat — in the plane — or its
+    // residual is below tol: in space σ = y/|y| repeats only to the accuracy of y)
+    if (same_sets(next, sets) || tresca_residual <= options.tol || cold_start) {
       // ... solved (or the bonded start): Coulomb's fixed point takes s = μ λ_N (for
       // Tresca nothing is left to do: the residual is the inner solver's)
       if (!cold_start && (s_new - s).lpNorm<Eigen::Infinity>() == 0.0) {
@@ -141,7 +160,9 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
       s = s_new;
       next = sets_of(f, last.X, result.qp.reaction, s, D);
       visited.clear();
-    } else if (std::any_of(visited.begin(), visited.end(), [&](const auto& v) { return same_sets(v, next); })) {
+      last_tresca = std::numeric_limits<double>::infinity();
+    } else if (stalled ||
+               std::any_of(visited.begin(), visited.end(), [&](const auto& v) { return same_sets(v, next); })) {
       // ... cycling (Newton's method for a nonsmooth equation converges only locally):
       // the Tresca problem of s by projected Gauss–Seidel, globally convergent, whose
       // solution gives the sets of the next Newton step.
@@ -149,18 +170,25 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
         detail = "the active sets cycle, and the saddle form has no projected Gauss-Seidel fallback";
         break;
       }
+      // In space, where the outer fixed point on Coulomb's thresholds would restart this
+      // for every new s (measured: a contraction of about 0.2 per round, each round
+      // stalling first), the whole problem goes to projected Gauss–Seidel, thresholds
+      // included; its solution gives both the sets and s.
       FrictionConditions tresca = f;
-      for (int k = 0; k < m; ++k) {
-        tresca.contacts[k].coulomb = false;
-        tresca.contacts[k].threshold = s[k];
-      }
+      if (!in_space)
+        for (int k = 0; k < m; ++k) {
+          tresca.contacts[k].coulomb = false;
+          tresca.contacts[k].threshold = s[k];
+        }
       FrictionOptions pgs = options;
       pgs.throw_on_failure = false;
       const FrictionResult g = solve_friction_pgs(qp, tresca, pgs, &result);
       ++fallbacks;
       inner_iterations += g.qp.iterations;
+      if (in_space) s = g.threshold;
       next = sets_of(f, g.qp.X, g.qp.reaction, s, D);
       visited.clear();
+      last_tresca = std::numeric_limits<double>::infinity();
     }
     sets = next;
   }

@@ -201,7 +201,7 @@ void StepQPScheme::solve_with_friction(State& s, StepStats& stats) {
   for (int k = 0; k < m; ++k) {
     const FrictionContact& c = friction_.contacts[k];
     s.contact_status[k] = static_cast<int>(friction_last_.status[k]);
-    s.slip[k] = slip_factor_ * (X[c.tangential[0]] - friction_.reference[c.tangential[0]]);
+    s.slip[k] = slip_factor_ * tangential_slip(c, X, friction_.reference);
   }
 }
 

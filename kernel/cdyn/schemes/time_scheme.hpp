@@ -27,8 +27,10 @@ struct State {
   Eigen::VectorXd reaction;  // Gᵀλ of the last step on the free dofs (λ the seed's multiplier)
   // With friction (ConstrainedProblem::friction), per friction node, of the last step:
   // its status (qp/friction_qp.hpp: 0 open, 1 stick, 2 slip) and its slip, the
-  // increment U^{n+1}_T − Uⁿ_T of its (first) tangential unknown.  The tangential force
-  // is `reaction` on the tangential unknown.  Empty without friction or before a step.
+  // increment U^{n+1}_T − Uⁿ_T of its tangential unknown in the plane (signed), its
+  // length in space (tangential_slip).  The tangential force is `reaction` on the
+  // tangential unknowns (problems/friction.hpp, tangential_force).  Empty without
+  // friction or before a step.
   std::vector<int> contact_status;
   Eigen::VectorXd slip;
 };
