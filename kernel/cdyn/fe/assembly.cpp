@@ -53,6 +53,48 @@ SparseMatrix from_triplets(int rows, int cols, const std::vector<Eigen::Triplet<
   return M;
 }
 
+// The cells' entries (i, j, value), summed into a sparse matrix by batches of kBatch:
+// setFromTriplets holds every entry at once and an unsorted matrix of as many besides,
+// 12 × 12 entries a tetrahedron for 3D elasticity — 284M entries at 10⁶ unknowns, where
+// a run peaked at 8.45 GB with one setFromTriplets and at 5.63 GB by batches
+// (docs/performance.md, "Three dimensions").  A mesh with fewer entries (every mesh of
+// the tests) is summed by one setFromTriplets as before, bit for bit; a larger one
+// batch by batch, the partial matrices added (the same sums in another order:
+// round-off).
+class TripletSum {
+ public:
+  TripletSum(int rows, int cols, std::size_t expected) : rows_(rows), cols_(cols) {
+    t_.reserve(std::min(expected, kBatch));
+  }
+  void add(int i, int j, double value) {
+    t_.emplace_back(i, j, value);
+    if (t_.size() == kBatch) flush();
+  }
+  SparseMatrix finish() {
+    if (!batched_) return from_triplets(rows_, cols_, t_);
+    flush();
+    sum_.makeCompressed();
+    return std::move(sum_);
+  }
+
+ private:
+  static constexpr std::size_t kBatch = std::size_t{1} << 24;  // 16.8M entries, 268 MB
+  void flush() {
+    SparseMatrix part = from_triplets(rows_, cols_, t_);
+    t_.clear();
+    if (!batched_) {
+      sum_ = std::move(part);
+      batched_ = true;
+    } else {
+      sum_ += part;
+    }
+  }
+  int rows_, cols_;
+  std::vector<Eigen::Triplet<double>> t_;
+  SparseMatrix sum_;
+  bool batched_ = false;
+};
+
 }  // namespace
 
 namespace {
@@ -64,8 +106,7 @@ SparseMatrix weighted_mass(const FESpace& R, const FESpace& W, const CellCoeffic
   const QuadratureRule q = cell_quadrature(W.dim(), R.degree() + W.degree());
   const Tabulation tr(R, q), tw(W, q);
   const int nc = R.components();
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * tr.n * tw.n * nc);
+  TripletSum t(R.n_dofs(), W.n_dofs(), static_cast<std::size_t>(W.mesh().n_cells()) * tr.n * tw.n * nc);
   std::vector<double> local(tr.n * tw.n);
   for (int c = 0; c < W.mesh().n_cells(); ++c) {
     const double detJ = CellGeometry(W.mesh(), c).det;
@@ -78,9 +119,9 @@ SparseMatrix weighted_mass(const FESpace& R, const FESpace& W, const CellCoeffic
     const auto ri = R.cell_dofs(c), wj = W.cell_dofs(c);
     for (int i = 0; i < tr.n; ++i)
       for (int j = 0; j < tw.n; ++j)
-        for (int k = 0; k < nc; ++k) t.emplace_back(R.dof(ri[i], k), W.dof(wj[j], k), local[i * tw.n + j]);
+        for (int k = 0; k < nc; ++k) t.add(R.dof(ri[i], k), W.dof(wj[j], k), local[i * tw.n + j]);
   }
-  return from_triplets(R.n_dofs(), W.n_dofs(), t);
+  return t.finish();
 }
 
 // A per-cell coefficient must have one value per cell of the mesh.
@@ -106,8 +147,7 @@ SparseMatrix assemble_laplace(const FESpace& W) {
   if (W.components() != 1) throw InputError("assemble_laplace: a scalar space is expected");
   const QuadratureRule q = cell_quadrature(W.dim(), 2 * (W.degree() - 1));
   const Tabulation tw(W, q);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * tw.n * tw.n);
+  TripletSum t(W.n_dofs(), W.n_dofs(), static_cast<std::size_t>(W.mesh().n_cells()) * tw.n * tw.n);
   std::vector<Grad> g(tw.n);
   std::vector<double> local(tw.n * tw.n);
   for (int c = 0; c < W.mesh().n_cells(); ++c) {
@@ -122,9 +162,9 @@ SparseMatrix assemble_laplace(const FESpace& W) {
     const auto d = W.cell_dofs(c);
     for (int i = 0; i < tw.n; ++i)
       for (int j = 0; j < tw.n; ++j)
-        if (stiffness_couples(W, i, j)) t.emplace_back(d[i], d[j], local[i * tw.n + j]);
+        if (stiffness_couples(W, i, j)) t.add(d[i], d[j], local[i * tw.n + j]);
   }
-  return from_triplets(W.n_dofs(), W.n_dofs(), t);
+  return t.finish();
 }
 
 SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda_c, const CellCoefficient& mu_c) {
@@ -136,8 +176,7 @@ SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda
   const QuadratureRule q = cell_quadrature(nc, 2 * (W.degree() - 1));
   const Tabulation tw(W, q);
   const int n = tw.n, m = nc * n;  // local vector dofs: (scalar i, component k) -> nc·i + k
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(W.mesh().n_cells()) * m * m);
+  TripletSum t(W.n_dofs(), W.n_dofs(), static_cast<std::size_t>(W.mesh().n_cells()) * m * m);
   std::vector<Grad> g(n);
   std::vector<double> local(m * m);
   for (int c = 0; c < W.mesh().n_cells(); ++c) {
@@ -166,9 +205,9 @@ SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda
         if (stiffness_couples(W, i, j))
           for (int k = 0; k < nc; ++k)
             for (int l = 0; l < nc; ++l)
-              t.emplace_back(W.dof(d[i], k), W.dof(d[j], l), local[(nc * i + k) * m + nc * j + l]);
+              t.add(W.dof(d[i], k), W.dof(d[j], l), local[(nc * i + k) * m + nc * j + l]);
   }
-  return from_triplets(W.n_dofs(), W.n_dofs(), t);
+  return t.finish();
 }
 
 namespace {

@@ -2,6 +2,7 @@
 #include "cdyn/mass/mixed.hpp"
 
 #include <Eigen/CholmodSupport>
+#include <memory>
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
@@ -43,12 +44,12 @@ class MixedMassModel final : public MassModel {
       M.makeCompressed();
       M_ = std::move(M);
     } else {
-      // H^h = W^h (P1/P1): B = C, and the velocity C⁻¹ B Ẇ is Ẇ itself (no solve).
+      // H^h = W^h (P1/P1): B = C, and the velocity C⁻¹ B Ẇ is Ẇ itself (no solve, and
+      // no factor of C: in 3D it fills — 312 MB at 10⁵ unknowns, and at 10⁶ it took a
+      // run's peak from 8.45 to 12.7 GB and 170 s of its set-up).  The other continuous
+      // H^h factorize C when a velocity is first asked for (velocity()).
       C_.makeCompressed();
       identity_ = same_matrix(B_, C_);
-      cholC_.compute(C_);
-      if (cholC_.info() != Eigen::Success)
-        throw NumericalError("mass model " + name_ + ": the Cholesky factorization of C failed");
     }
   }
 
@@ -90,7 +91,13 @@ class MixedMassModel final : public MassModel {
     if (identity_) return Wdot;
     const Eigen::VectorXd rhs = transpose_times(Bt_, Wdot);  // B Ẇ, gathered from Bᵀ's columns
     if (diagonal_) return rhs.cwiseQuotient(Cdiag_);
-    Eigen::VectorXd V = cholC_.solve(rhs);
+    if (!cholC_) {
+      cholC_ = std::make_unique<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>>();
+      cholC_->compute(C_);
+      if (cholC_->info() != Eigen::Success)
+        throw NumericalError("mass model " + name_ + ": the Cholesky factorization of C failed");
+    }
+    Eigen::VectorXd V = cholC_->solve(rhs);
     return V;
   }
 
@@ -117,7 +124,7 @@ class MixedMassModel final : public MassModel {
   bool identity_ = false;  // B = C
   Eigen::VectorXd Cdiag_;
   std::optional<SparseMatrix> M_;
-  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholC_;
+  mutable std::unique_ptr<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>> cholC_;  // C's, made on first use
   mutable std::optional<bool> invertible_;  // is_invertible(), computed on the first call
 };
 
