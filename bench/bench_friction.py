@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """bench_friction.py — the cost of friction (docs/friction.md, "Cost"): the mean wall
 time of a step over the steps in contact, with Coulomb (or Tresca) friction against the
-same scene frictionless, on the elastic disk (data/scenes/disk.toml) and the disk
-thrown at the 30° ramp (data/scenes/ramp.toml).
+same scene frictionless, on the elastic disk (data/scenes/disk.toml), the disk
+thrown at the 30° ramp (data/scenes/ramp.toml) and, in space, the plate sliding down an
+incline of data/scenes/incline_block_3d.toml (two tangential unknowns a vertex).
 
 Usage: bench_friction.py CDYN SOURCE_DIR OUT_DIR [--repeat R] [--solver pdas,pgs]
 
@@ -22,7 +23,14 @@ import json
 import os
 import subprocess
 
-SCENES = {"disk": "disk.toml", "ramp": "ramp.toml"}
+SCENES = {"disk": "disk.toml", "ramp": "ramp.toml", "plate3d": "prism_3d.toml"}
+# In space: data/scenes/incline_block_3d.toml's plate sliding down the incline, built on
+# prism_3d.toml (the same box.geo) so that the frictionless run has no friction keys.
+SCENE_SETS = {"plate3d": ["mesh.set.h=0.25", "mesh.set.Ly=1.0", "mesh.set.Lz=0.25", "physics.E=1e8",
+                          "physics.nu=0.3", "physics.rho=1000.0", "physics.gravity=[4.247855, 2.4525, -8.495709211]",
+                          "obstacle.where=bottom", "obstacle.point=[0.0, 0.0, 0.0]", "obstacle.normal=[0.0, 0.0, 1.0]",
+                          'initial.v=["0", "0", "0"]', "method.pair=P1/P0", "time.dt=1e-3", "time.T=0.1",
+                          "output.probes={}"]}
 LAWS = {
     "coulomb mu = 0.3": ['contact.friction="coulomb"', 'contact.mu="0.3"'],
     "tresca s = 0.5 N/mm^2": ['contact.friction="tresca"', 'contact.threshold="0.5"'],
@@ -59,7 +67,7 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--solver", default="pdas,pgs")
     a = ap.parse_args()
-    print(f"{'scene':6} {'solver':6} {'law':24} {'frictionless ms':>16} {'friction ms':>12} {'ratio':>6} "
+    print(f"{'scene':7} {'solver':6} {'law':24} {'frictionless ms':>16} {'friction ms':>12} {'ratio':>6} "
           f"{'QP iters':>9} {'W_f':>10}")
     for name, file in SCENES.items():
         scene = os.path.join(a.source, "data/scenes", file)
@@ -68,13 +76,14 @@ def main():
                 t_free, t_fric = [], []
                 for k in range(a.repeat):
                     base = os.path.join(a.out, f"{name}_{solver}_{k}")
-                    free, _ = run(a.cdyn, scene, base + "_free", [f"solver.name={solver}"])
-                    fric, summary = run(a.cdyn, scene, base + "_friction", [f"solver.name={solver}"] + sets)
+                    own = SCENE_SETS.get(name, []) + [f"solver.name={solver}"]
+                    free, _ = run(a.cdyn, scene, base + "_free", own)
+                    fric, summary = run(a.cdyn, scene, base + "_friction", own + sets)
                     window = contact_window(free)
                     t_free.append(mean_step(free, window))
                     t_fric.append(mean_step(fric, window))
                 f, g = sum(t_free) / len(t_free), sum(t_fric) / len(t_fric)
-                print(f"{name:6} {solver:6} {law:24} {1e3 * f:16.4f} {1e3 * g:12.4f} {g / f:6.2f} "
+                print(f"{name:7} {solver:6} {law:24} {1e3 * f:16.4f} {1e3 * g:12.4f} {g / f:6.2f} "
                       f"{summary['qp_iters_mean']:9.2f} {summary['friction_work']:10.4g}")
 
 
