@@ -27,8 +27,10 @@
 #include "cdyn/qp/friction_solvers.hpp"
 #include "cdyn/qp/kkt.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
+#include "trajectory_fixtures.hpp"
 
 using namespace cdyn;
+using cdyn::testing::max_abs_difference;
 
 namespace {
 
@@ -96,12 +98,6 @@ std::vector<Step> run(const ConstrainedProblem& p, const std::string& scheme_nam
     out.push_back(st);
   }
   return out;
-}
-
-double max_abs_difference(const std::vector<Step>& a, const std::vector<Step>& b) {
-  double d = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, (a[k].U_full - b[k].U_full).lpNorm<Eigen::Infinity>());
-  return d;
 }
 
 // An initial velocity (1, −1/2) (sliding into the plane), a translation of the block.

@@ -26,8 +26,10 @@
 #include "cdyn/post/linear_momentum.hpp"
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
+#include "trajectory_fixtures.hpp"
 
 using namespace cdyn;
+using cdyn::testing::max_abs_difference;
 
 namespace {
 
@@ -91,12 +93,6 @@ std::vector<Step> run(const ConstrainedProblem& p, const std::string& solver_nam
     out.push_back(st);
   }
   return out;
-}
-
-double max_abs_difference(const std::vector<Step>& a, const std::vector<Step>& b) {
-  double d = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, (a[k].U_full - b[k].U_full).lpNorm<Eigen::Infinity>());
-  return d;
 }
 
 const double kTheta = 40.0 * M_PI / 180.0, kPhi = 30.0 * M_PI / 180.0;

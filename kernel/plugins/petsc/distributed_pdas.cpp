@@ -65,12 +65,6 @@ double solution_scale(DistributedQP& q, Vec D) {
   return s > 0 ? s : 1.0;
 }
 
-// X projected on the box (a start that satisfies the bounds).
-void project(DistributedQP& q) {
-  check(VecPointwiseMax(q.X, q.X, q.lower), "VecPointwiseMax");
-  check(VecPointwiseMin(q.X, q.X, q.upper), "VecPointwiseMin");
-}
-
 // λ = S X − r
 void update_reaction(DistributedQP& q) {
   check(MatMult(q.S, q.X, q.reaction), "MatMult");
@@ -106,7 +100,7 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   check(VecMin(D, nullptr, &min_d), "VecMin");
   if (!(min_d > 0)) throw NumericalError("petsc pdas: S has a diagonal entry ≤ 0 (not positive definite)");
   const double atol = 1e-2 * settings.tol * min_d * solution_scale(q, D);
-  project(q);
+  project_on_box(q);
   if (!warm) update_reaction(q);
 
   check(MatDuplicate(q.S, MAT_COPY_VALUES, &S_held), "MatDuplicate");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "cdyn/base/error.hpp"
@@ -218,14 +219,24 @@ void configure_krylov(KSP ksp, Preconditioner pc_type, bool fixed_size) {
   check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 }
 
-void petsc_infinities(Vec bound) {
-  PetscScalar* b = nullptr;
-  PetscInt m = 0;
-  check(VecGetLocalSize(bound, &m), "VecGetLocalSize");
-  check(VecGetArray(bound, &b), "VecGetArray");
-  for (PetscInt i = 0; i < m; ++i)
-    if (std::isinf(b[i])) b[i] = b[i] > 0 ? PETSC_INFINITY : PETSC_NINFINITY;
-  check(VecRestoreArray(bound, &b), "VecRestoreArray");
+void project_on_box(DistributedQP& q) {
+  check(VecPointwiseMax(q.X, q.X, q.lower), "VecPointwiseMax");
+  check(VecPointwiseMin(q.X, q.X, q.upper), "VecPointwiseMin");
+}
+
+void petsc_bounds(DistributedQP& q, Vec* lower, Vec* upper) {
+  for (auto [from, to] : {std::pair{q.lower, lower}, std::pair{q.upper, upper}}) {
+    check(VecDuplicate(from, to), "VecDuplicate");
+    check(VecCopy(from, *to), "VecCopy");
+    PetscScalar* b = nullptr;
+    PetscInt m = 0;
+    check(VecGetLocalSize(*to, &m), "VecGetLocalSize");
+    check(VecGetArray(*to, &b), "VecGetArray");
+    for (PetscInt i = 0; i < m; ++i)
+      if (std::isinf(b[i])) b[i] = b[i] > 0 ? PETSC_INFINITY : PETSC_NINFINITY;
+    check(VecRestoreArray(*to, &b), "VecRestoreArray");
+  }
+  project_on_box(q);
 }
 
 int solve_collectively(DistributedQP& q, const SolveSettings& settings) {

@@ -109,7 +109,11 @@ int snesvi_solve(DistributedQP& q, const SolveSettings& settings);
 // SNESVI's systems change size with the free set, and may not.
 void configure_krylov(KSP ksp, Preconditioner pc, bool fixed_size);
 
-// Bounds in PETSc's convention for TAO and SNESVI (±PETSC_INFINITY for ±∞).
-void petsc_infinities(Vec bound);
+// X projected on the box lower ≤ X ≤ upper (a start that satisfies the bounds).
+void project_on_box(DistributedQP& q);
+
+// For TAO and SNESVI: copies of the bounds in PETSc's convention (±PETSC_INFINITY for
+// ±∞; the caller destroys them), and X projected on the box.
+void petsc_bounds(DistributedQP& q, Vec* lower, Vec* upper);
 
 }  // namespace cdyn::petsc

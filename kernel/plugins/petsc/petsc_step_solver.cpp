@@ -21,11 +21,16 @@ const std::vector<std::pair<std::string, Algorithm>> kAlgorithms = {
 const std::vector<std::pair<std::string, Preconditioner>> kPreconditioners = {
     {"gamg", Preconditioner::gamg}, {"hypre", Preconditioner::hypre}, {"jacobi", Preconditioner::jacobi}};
 
+// The entry of a name table, or InputError naming the parameter and the table's names.
 template <class T>
-std::string names_of(const std::vector<std::pair<std::string, T>>& table) {
-  std::string out;
-  for (const auto& [name, value] : table) out += (out.empty() ? "" : ", ") + name;
-  return out;
+T lookup(const std::vector<std::pair<std::string, T>>& table, const std::string& name, const char* parameter,
+         const char* what) {
+  std::string known;
+  for (const auto& [key, value] : table) {
+    if (key == name) return value;
+    known += (known.empty() ? "" : ", ") + key;
+  }
+  throw InputError(parameter, "'" + name + "' is not " + what + " of the petsc back end (available: " + known + ")");
 }
 
 class PetscStepSolver : public StepSolver {
@@ -92,30 +97,20 @@ class PetscStepSolver : public StepSolver {
 
 StepSolver* new_petsc_step_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner) {
   if (!(options.tol > 0)) throw InputError("tol", "must be a positive number");
-  const Algorithm* algorithm = nullptr;
-  for (const auto& a : kAlgorithms)
-    if (a.first == name) algorithm = &a.second;
-  if (!algorithm)
-    throw InputError("solver", "'" + name + "' is not a step solver of the petsc back end (available: " +
-                                   names_of(kAlgorithms) + ")");
+  const Algorithm algorithm = lookup(kAlgorithms, name, "solver", "a step solver");
   // The default, Jacobi: the step matrix is well conditioned when dt ∝ h (CG needs a
   // few dozen iterations), and an algebraic multigrid's set-up at every change of the
   // active set costs far more than it saves (measured, docs/distributed.md: GAMG 3.6 s
   // a step where Jacobi takes 0.09 s on the 16³ cube).
-  const std::string chosen = preconditioner.empty() ? "jacobi" : preconditioner;
-  const Preconditioner* pc = nullptr;
-  for (const auto& p : kPreconditioners)
-    if (p.first == chosen) pc = &p.second;
-  if (!pc)
-    throw InputError("pc", "'" + chosen + "' is not a preconditioner of the petsc back end (available: " +
-                               names_of(kPreconditioners) + ")");
+  const Preconditioner pc =
+      lookup(kPreconditioners, preconditioner.empty() ? "jacobi" : preconditioner, "pc", "a preconditioner");
   // TAO's and SNESVI's Krylov solves see a matrix of another size at every iteration,
   // which PETSc 3.18's GAMG does not take (its coarse solver keeps the first sizes)
-  if (*pc == Preconditioner::gamg && *algorithm != Algorithm::pdas)
+  if (pc == Preconditioner::gamg && algorithm != Algorithm::pdas)
     throw InputError("pc", "gamg cannot precondition " + name +
                                ", whose systems change size with the free set (use hypre or jacobi)");
   session::start();
-  return new PetscStepSolver(name, *algorithm, *pc, options);
+  return new PetscStepSolver(name, algorithm, pc, options);
 }
 
 }  // namespace cdyn::petsc

@@ -28,14 +28,8 @@ PetscErrorCode constant_jacobian(SNES, Vec, Mat, Mat, void*) { return 0; }  // S
 int snesvi_solve(DistributedQP& q, const SolveSettings& settings) {
   SNES snes = nullptr;
   Vec l = nullptr, u = nullptr, F = nullptr;
-  check(VecDuplicate(q.lower, &l), "VecDuplicate");
-  check(VecDuplicate(q.upper, &u), "VecDuplicate");
+  petsc_bounds(q, &l, &u);
   check(VecDuplicate(q.r, &F), "VecDuplicate");
-  check(VecCopy(q.lower, l), "VecCopy");
-  check(VecCopy(q.upper, u), "VecCopy");
-  petsc_infinities(l), petsc_infinities(u);
-  check(VecPointwiseMax(q.X, q.X, q.lower), "VecPointwiseMax");
-  check(VecPointwiseMin(q.X, q.X, q.upper), "VecPointwiseMin");
   check(SNESCreate(PETSC_COMM_WORLD, &snes), "SNESCreate");
   check(SNESSetType(snes, SNESVINEWTONRSLS), "SNESSetType");
   check(SNESSetFunction(snes, F, residual, &q), "SNESSetFunction");

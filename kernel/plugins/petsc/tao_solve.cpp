@@ -42,13 +42,7 @@ TaoType tao_type(Algorithm a) {
 int tao_solve(DistributedQP& q, const SolveSettings& settings) {
   Tao tao = nullptr;
   Vec l = nullptr, u = nullptr;
-  check(VecDuplicate(q.lower, &l), "VecDuplicate");
-  check(VecDuplicate(q.upper, &u), "VecDuplicate");
-  check(VecCopy(q.lower, l), "VecCopy");
-  check(VecCopy(q.upper, u), "VecCopy");
-  petsc_infinities(l), petsc_infinities(u);
-  check(VecPointwiseMax(q.X, q.X, q.lower), "VecPointwiseMax");
-  check(VecPointwiseMin(q.X, q.X, q.upper), "VecPointwiseMin");
+  petsc_bounds(q, &l, &u);
   check(TaoCreate(PETSC_COMM_WORLD, &tao), "TaoCreate");
   check(TaoSetType(tao, tao_type(settings.algorithm)), "TaoSetType");
   check(TaoSetSolution(tao, q.X), "TaoSetSolution");
