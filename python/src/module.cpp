@@ -6,6 +6,7 @@
 // line's one-line message unchanged: the text `cdyn` prints after "cdyn: error: " or
 // "cdyn: numerical failure: ".
 #include "cdyn/base/error.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 #include "cdyn/version.hpp"
 #include "cdyn_python.hpp"
 
@@ -13,6 +14,9 @@ PYBIND11_MODULE(_cdyn, m) {
   using namespace cdyn::python;
   m.doc() = "cdyn's kernel and command line (compiled part); import cdyn instead";
   m.attr("__version__") = cdyn::version;
+  // (the PETSc back end ends its process without the interpreter's own ending)
+  cdyn::petsc::refuse("the Python module runs on the native back end; run solver.backend = \"petsc\" with the "
+                      "command line (mpirun -n P cdyn run SCENE, docs/distributed.md)");
   auto input = py::register_exception<cdyn::InputError>(m, "InputError", PyExc_ValueError);
   auto numerical = py::register_exception<cdyn::NumericalError>(m, "NumericalError", PyExc_RuntimeError);
   input.attr("__module__") = "cdyn";

@@ -124,3 +124,10 @@ def test_a_python_error_in_a_datum_propagates():
     with pytest.raises(TypeError):
         cdyn.run(42)
     assert np.isfinite(cdyn.scalar_wave(cdyn.unit_square_mesh(2), f=lambda x, y, t: x * y).load(0.0)).all()
+
+
+def test_the_petsc_back_end_is_the_command_lines():
+    # The PETSc back end ends its process without the interpreter's own ending
+    # (docs/distributed.md): refused here, naming the key.
+    with pytest.raises(cdyn.InputError, match=r"^solver.backend: the Python module runs on the native back end"):
+        cdyn.run(set={"solver.backend": "petsc", "time.T": 0.01})

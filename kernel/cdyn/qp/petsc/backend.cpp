@@ -36,9 +36,11 @@ std::vector<std::filesystem::path> plugin_candidates() {
 }
 
 const PluginTable* opened = nullptr;
+std::string refused;  // refuse()'s reason
 
 const PluginTable& plugin() {
   if (opened) return *opened;
+  if (!refused.empty()) throw InputError("solver.backend", refused);
 #ifndef CDYN_WITH_PETSC
   throw InputError("solver.backend", "this cdyn was built without PETSc (CDYN_WITH_PETSC=OFF)");
 #else
@@ -81,6 +83,8 @@ void initialize() { plugin().initialize(); }
 int rank() { return opened ? opened->rank() : 0; }
 int size() { return opened ? opened->size() : 1; }
 int serve() { return plugin().serve(); }
+
+void refuse(const std::string& why) { refused = why; }
 
 int end_process(int status) {
   if (!opened) return status;

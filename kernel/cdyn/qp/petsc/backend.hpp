@@ -39,6 +39,11 @@ int serve();
 // opened, returns `status` (a normal exit).
 int end_process(int status);
 
+// Refuses the back end in this process from now on: InputError naming solver.backend,
+// with `why`.  For the Python module, whose interpreter must end normally, which the
+// process that opened the plugin cannot (end_process).
+void refuse(const std::string& why);
+
 // A step solver of the back end (qp/petsc/petsc_step_solver.hpp): name pdas,
 // tao_tron, tao_gpcg, tao_bqnls, tao_bncg or snesvi; preconditioner gamg (pdas only),
 // hypre or jacobi, empty for the default (jacobi).
