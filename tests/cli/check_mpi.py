@@ -10,7 +10,8 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
  2. TAO's TRON and SNESVI on two processes: the same.
  3. Errors: one line from rank 0 and exit status 2 — the native back end under mpirun
     -n 2, a saddle-form pair, friction, solver.pc on the native back end, solver.linear
-    on the petsc one.
+    on the petsc one; a step QP that does not converge on two ranks: one line, exit
+    status 3, no rank left waiting.
 Only the standard library is used.
 """
 import csv
@@ -104,6 +105,15 @@ for what, (scene, sets, key) in ERRORS.items():
     mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
     check(done.returncode == 2 and len(mine) == 1 and mine[0].startswith("cdyn: error: " + key),
           f"{what}: exit {done.returncode}, {mine}")
+
+# A numerical failure on the ranks: pdas held to one iteration cannot follow the impact
+# (step 255): exit status 3, one line from rank 0 naming the step, no rank left waiting.
+done = subprocess.run(command(2, "", os.path.join(work, "failure"), ["solver.backend=petsc", "solver.max_iterations=1",
+                                                                     "time.T=0.3"]),
+                      env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+check(done.returncode == 3 and len(mine) == 1 and mine[0].startswith("cdyn: numerical failure: step ")
+      and "did not converge" in mine[0], f"a numerical failure on two ranks: exit {done.returncode}, {mine}")
 
 if failures:
     sys.exit(f"{len(failures)} check(s) failed")
