@@ -62,6 +62,7 @@
 #ifdef CDYN_WITH_IPOPT
 #include "cdyn/qp/friction_ipopt.hpp"
 #include "cdyn/qp/ipopt.hpp"
+#include "cdyn/qp/ipopt_program.hpp"
 #endif
 #include "cdyn/qp/kkt.hpp"
 #ifdef CDYN_WITH_NLOPT

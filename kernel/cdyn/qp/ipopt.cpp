@@ -3,13 +3,13 @@
 
 #include <coin/IpIpoptApplication.hpp>
 #include <coin/IpSolveStatistics.hpp>
-#include <coin/IpTNLP.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/qp/ipopt_program.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
 
 namespace cdyn {
@@ -34,9 +34,9 @@ void lower_triangle(const SparseMatrix& M, int offset, double factor, std::vecto
 }
 
 // The QP as an Ipopt nonlinear program (variables X, or (U, Z) in saddle form).
-class BoundQPProgram : public Ipopt::TNLP {
+class BoundQPProgram : public IpoptProgram {
  public:
-  BoundQPProgram(const BoundQP& qp, const Eigen::VectorXd& x0) : qp_(qp), x0_(x0) {
+  BoundQPProgram(const BoundQP& qp, const Eigen::VectorXd& x0) : IpoptProgram(qp.size()), qp_(qp), x0_(x0) {
     n_ = qp.size();
     if (qp.saddle) {
       const SaddleForm& f = *qp.saddle;
@@ -142,16 +142,6 @@ class BoundQPProgram : public Ipopt::TNLP {
     }
     return true;
   }
-
-  void finalize_solution(Ipopt::SolverReturn status, Index, const Number* x, const Number*, const Number*, Index,
-                         const Number*, const Number*, Number, const Ipopt::IpoptData*,
-                         Ipopt::IpoptCalculatedQuantities*) override {
-    status_ = status;
-    X_ = Eigen::Map<const Eigen::VectorXd>(x, n_);
-  }
-
-  Eigen::VectorXd X_;
-  Ipopt::SolverReturn status_ = Ipopt::INTERNAL_ERROR;
 
  private:
   const BoundQP& qp_;

@@ -54,11 +54,6 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
       throw InputError("scheme", name + " takes no friction (nodal friction is in backward_euler, and in midpoint_end "
                                         "with a mass without massless modes)");
   }
-  // Ipopt's split slips p − q describe one tangential unknown (docs/friction.md §3).
-  for (const FrictionNode& node : problem.friction)
-    if (node.tangential.size() > 1 && solver.name() == "ipopt")
-      throw InputError("solver", "ipopt's split slips take one tangential unknown per contact vertex (the plane); in "
-                                 "space, friction is solved by pdas (semismooth Newton) or pgs");
   const bool c = parameters.condense;
   if (name == "backward_euler") return make_backward_euler(problem, solver, dt, parameters);
   if (name == "midpoint") return make_midpoint(problem, solver, dt, parameters);
