@@ -275,10 +275,8 @@ Eigen::VectorXd solve_tresca(const BoundQP& qp, const FrictionConditions& f, con
   o.SetNumericValue("tol", 1e-3 * tol);
   o.SetNumericValue("mu_min", 1e-10 * tol);
   o.SetIntegerValue("max_iter", 3000);
-  const bool in_space = std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) {
-    return c.tangential.size() > 1;
-  });
-  if (!in_space) {  // the split program is a QP: constant derivatives
+  const bool space = in_space(f);
+  if (!space) {  // the split program is a QP: constant derivatives
     o.SetStringValue("hessian_constant", "yes");
     o.SetStringValue("jac_c_constant", "yes");
     o.SetStringValue("jac_d_constant", "yes");
@@ -291,7 +289,7 @@ Eigen::VectorXd solve_tresca(const BoundQP& qp, const FrictionConditions& f, con
     if (Ipopt::IsValid(app->Statistics())) iterations += app->Statistics()->IterationCount();
     return program->X_.size() == qp.size() ? program->X_ : x0;
   };
-  if (in_space) return optimize(Ipopt::SmartPtr<ConeSlipProgram>(new ConeSlipProgram(qp, f, s, x0)));
+  if (space) return optimize(Ipopt::SmartPtr<ConeSlipProgram>(new ConeSlipProgram(qp, f, s, x0)));
   return optimize(Ipopt::SmartPtr<SplitSlipProgram>(new SplitSlipProgram(qp, f, s, x0)));
 }
 
@@ -308,10 +306,8 @@ FrictionResult solve_friction_ipopt(BoundQP& qp, const FrictionConditions& f, co
   // cone's apex (w = |d| = 0 at a sticking vertex, where the constraint's gradient
   // vanishes) costs Ipopt hundreds of iterations a solve (measured: 3 400–4 100 a step
   // on the plate of incline_block_3d.toml with 50 thresholds, 15 s a step).
-  const bool in_space = std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) {
-    return c.tangential.size() > 1;
-  });
-  const int max_outer = options.max_iterations > 0 ? options.max_iterations : in_space ? 2 : 50;
+  const bool space = in_space(f);
+  const int max_outer = options.max_iterations > 0 ? options.max_iterations : space ? 2 : 50;
 
   // Coulomb's thresholds start from the previous step's, or from the bonded step's λ_N
   // (s = ∞: every slip held at 0), as the semismooth Newton method does.

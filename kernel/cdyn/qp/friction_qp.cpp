@@ -27,6 +27,10 @@ double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const
   return slip_norm(c, X, reference);
 }
 
+bool in_space(const FrictionConditions& f) {
+  return std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) { return c.tangential.size() > 1; });
+}
+
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction) {
   const int m = static_cast<int>(f.contacts.size());
   Eigen::VectorXd s(m);

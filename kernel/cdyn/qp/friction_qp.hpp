@@ -76,6 +76,9 @@ struct FrictionResult {
 // unknown, in space the length |X_T − X̂_T| of the increment in its tangent plane.
 double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen::VectorXd& reference);
 
+// Whether a contact has two tangential unknowns (a problem in space).
+bool in_space(const FrictionConditions& f);
+
 // The threshold of each contact: s, or μ max(λ_N, 0) from the reaction λ.
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction);
 

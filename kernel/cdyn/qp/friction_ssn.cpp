@@ -85,9 +85,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   const Eigen::VectorXd r0 = qp.r, lower0 = qp.lower, upper0 = qp.upper;
   const Eigen::VectorXd D = scaling_diagonal(qp);
   const int m = static_cast<int>(f.contacts.size());
-  const bool in_space = std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) {
-    return c.tangential.size() > 1;
-  });
+  const bool space = in_space(f);
 
   // Start: the previous step's sets and thresholds; cold, every node sticking (the
   // bonded step, whose λ_N gives Coulomb's first thresholds).
@@ -145,7 +143,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
     // test_friction_3d.cpp, each round of Coulomb's thresholds restarting it: a Tresca
     // residual that does not fall tenfold in an iteration is this method's cycling there)
     const double tresca_residual = friction_residual(qp, f, last.X, result.qp.reaction, s, D);
-    const bool stalled = in_space && tresca_residual > 0.1 * last_tresca;
+    const bool stalled = space && tresca_residual > 0.1 * last_tresca;
     last_tresca = tresca_residual;
     const bool cold_start = it == 1 && !warm;
     // (the Tresca problem of s is solved when the sets repeat — in the plane — or its
@@ -175,7 +173,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
       // stalling first), the whole problem goes to projected Gauss–Seidel, thresholds
       // included; its solution gives both the sets and s.
       FrictionConditions tresca = f;
-      if (!in_space)
+      if (!space)
         for (int k = 0; k < m; ++k) {
           tresca.contacts[k].coulomb = false;
           tresca.contacts[k].threshold = s[k];
@@ -185,7 +183,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
       const FrictionResult g = solve_friction_pgs(qp, tresca, pgs, &result);
       ++fallbacks;
       inner_iterations += g.qp.iterations;
-      if (in_space) s = g.threshold;
+      if (space) s = g.threshold;
       next = sets_of(f, g.qp.X, g.qp.reaction, s, D);
       visited.clear();
       last_tresca = std::numeric_limits<double>::infinity();
