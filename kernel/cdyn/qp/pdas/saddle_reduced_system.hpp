@@ -3,7 +3,7 @@
 // C⁻¹ is dense for a continuous velocity space, so S is never formed).
 //
 // With Z = C⁻¹ B X the stationarity equations of the QP on the free unknowns read
-//     [[A, c Bᵀ], [B, −C]] [X; Z] = [r; 0]     on the rows of X in I and all rows of Z,
+//     [[A, c Bᵀ], [c B, −c C]] [X; Z] = [r; 0]   on the rows of X in I and all rows of Z,
 // and the held unknowns are eliminated from the X rows and columns of this matrix K
 // exactly as from S: K̃ = K with those rows and columns replaced by the identity's, in
 // K's pattern, and B_A X_A moved to the right-hand side of the Z rows.  K is symmetric
@@ -42,7 +42,7 @@ class SaddleReducedSystem : public ReducedSystem {
   PDASCounters& counters_;
   int n_ = 0;
   SaddleForm blocks_;         // the last blocks seen
-  SparseMatrix K_, K_tilde_;  // [[A, c Bᵀ], [B, −C]] and its copy with the held set eliminated
+  SparseMatrix K_, K_tilde_;  // [[A, c Bᵀ], [c B, −c C]] and its copy with the held set eliminated
   struct LU;                  // UMFPACK's (kept out of this header: SuiteSparse's are not public)
   std::unique_ptr<LU> lu_;
   bool lu_factorized_ = false;
