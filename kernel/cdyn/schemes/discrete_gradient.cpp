@@ -233,17 +233,15 @@ std::unique_ptr<TimeScheme> make_discrete_gradient(const ConstrainedProblem& p, 
   if (!(parameters.energy_tol > 0)) throw InputError("energy_tol", "must be positive");
   FullStepReconstruction full_step(p, parameters.tol);
   // The scheme is the Hamiltonian system in q: it needs the massless part to be
-  // determined by (14), i.e. a local basis of Ker B that moves every constrained unknown
-  // (the seed's condition (12) in local form).  Without massless directions (Ker B =
+  // determined by (14) (the seed's condition (12)).  Without massless directions (Ker B =
   // {0}: P1/P1, P1/P0, consistent, lumped) the constrained unknowns carry inertia, the
   // semi-discrete problem is not a Lipschitz ODE and Ψ is not differentiable.
   if (!full_step.available())
-    throw InputError("scheme", "discrete_gradient needs the full steps of eq. (14), and the massless displacements "
-                               "Ker B of " + p.mass->name() + " have no local basis (available: P1+/P0, the "
-                               "redistributed mass)");
+    throw InputError("scheme", "discrete_gradient needs the full steps of eq. (14), and a constrained unknown of " +
+                                   p.mass->name() + " carries mass (condition (12) fails in local form)");
   if (!full_step.needed())
     throw InputError("scheme", "discrete_gradient needs a pair whose constrained unknowns are massless (condition "
-                               "(12) in local form: P1+/P0 or the redistributed mass), not " + p.mass->name() +
+                               "(12): P1+/P0, P1+/P1, P2/P1 or the redistributed mass), not " + p.mass->name() +
                                ", whose Ker B = {0}");
   return std::make_unique<DiscreteGradient>(p, solver, dt, parameters, std::move(full_step));
 }

@@ -19,11 +19,25 @@
 // warm-started from the last step: one more step QP per step, usually one
 // forward/back solve.  For P1+/P0 it lives on the vertex values (the bubbles keep the
 // cell means B W = B U).
+//
+// P2/P1 and P1+/P1 have no such basis (their Ker B is not spanned by cell-local
+// functions).  There (14) is solved in W = U + D by the method of multipliers
+// (Hestenes 1969, Powell 1969; Bertsekas, "Constrained optimization and Lagrange
+// multiplier methods", 1982, ch. 2), the constraint B D = 0 penalized in the C⁻¹ norm
+// of the mass: each iteration is the bound-constrained QP
+//     min ½ Dᵀ(A + ρ Bᵀ C⁻¹ B) D − (L − AU + Bᵀμ)ᵀ D,   lower − U ≤ D ≤ upper − U,
+// whose matrix is a step matrix A + ρ M in saddle form (qp/bound_qp.hpp), followed by
+// μ ← μ − ρ C⁻¹ B D.  On a fixed active set the error in μ contracts by 1/(1 + ρ θ) per
+// iteration, θ the generalized eigenvalues of (B A⁻¹ Bᵀ, C), all ≥ 1/ω²_max (ω_max the
+// highest free frequency): ρ = 10³ ω²_max makes every iteration gain three digits.
+// The multiplier is warm-started from the last call, the saddle matrix is factorized
+// once per active set; measured cost in docs/schemes.md.
 #pragma once
 
 #include <memory>
 #include <optional>
 
+#include "cdyn/linalg/sparse_cholesky.hpp"
 #include "cdyn/mass/massless_modes.hpp"
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/qp/step_solver.hpp"
@@ -36,15 +50,28 @@ class FullStepReconstruction {
   // The reconstruction of p's full steps, solved to `tol` (kkt_residual).
   FullStepReconstruction(const ConstrainedProblem& p, double tol);
 
-  // Whether Ker B has a local basis (mass/massless_modes.hpp) that moves every
-  // constrained unknown; not for P2/P1, P1+/P1.
-  bool available() const { return available_; }
+  // How (14) is solved: by the local basis of Ker B (mass/massless_modes.hpp), which
+  // must move every constrained unknown; by multipliers where Ker B has no local basis
+  // (P2/P1, P1+/P1); or not at all (a local basis that leaves a constrained unknown
+  // with mass: condition (12) fails in local form).
+  enum class Method { None, LocalBasis, Multipliers };
+  // `multipliers`: use the method of multipliers even where a local basis exists (to
+  // compare the two).
+  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers);
+
+  Method method() const { return method_; }
+  bool available() const { return method_ != Method::None; }
   // Whether it has anything to do: false when Ker B = {0} (then U is already unique).
-  bool needed() const { return available_ && modes_.Z.cols() > 0; }
+  bool needed() const { return method_ == Method::Multipliers || (available() && modes_.Z.cols() > 0); }
 
   // The solution W of (14) for the massful part of U at time t; the QP's KKT residual
+  // (by multipliers: the larger of it and the fibre's residual |C⁻¹B(W − U)|∞ / |W|∞)
   // goes to *kkt when given.  Returns U itself when Ker B = {0}.  Requires available().
+  // NumericalError when the multipliers do not bring B W to B U: (14) has no solution.
   Eigen::VectorXd operator()(const Eigen::VectorXd& U, double t, double* kkt = nullptr);
+
+  // Method of multipliers iterations (step QPs) of the last call.
+  int iterations() const { return iterations_; }
 
   // Its warm start into a scheme's memory, and back (clearing its solver's caches:
   // schemes/scheme_memory.hpp).
@@ -52,14 +79,29 @@ class FullStepReconstruction {
   void restore(const SchemeMemory& m);
 
  private:
-  bool available_ = false;
+  void start_multipliers(SaddleForm form);
+  // The QP's bounds lower − U ≤ d ≤ upper − U at K̄^h(t), d_k moving unknowns[k].
+  void set_bounds(const Eigen::VectorXd& U, const std::vector<int>& unknowns, double t);
+  Eigen::VectorXd by_local_basis(const Eigen::VectorXd& U, double t, double* kkt);
+  Eigen::VectorXd by_multipliers(const Eigen::VectorXd& U, double t, double* kkt);
+
+  Method method_ = Method::None;
   const ConstrainedProblem& p_;
+  double tol_;
   MasslessModes modes_;
   SparseMatrix Zt_;  // Zᵀ in compressed columns: Z d as a gather, threaded (linalg/parallel.hpp)
   BoundQP qp_;
   std::unique_ptr<StepSolver> solver_;
   QPResult last_;
   bool has_last_ = false;
+  // The method of multipliers: ρ, B, C's factor, the multiplier μ of B D = 0.
+  double rho_ = 0.0;
+  SparseMatrix B_;
+  std::unique_ptr<SparseCholesky> C_;
+  Eigen::VectorXd mu_;
+  std::vector<int> all_unknowns_;
+  Eigen::VectorXd A_diagonal_;
+  int iterations_ = 0;
 };
 
 }  // namespace cdyn

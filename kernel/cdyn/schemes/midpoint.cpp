@@ -18,8 +18,8 @@
 //
 // The massless part of U^{n+1} (Ker B) is not what the extrapolation 2U^{n+½} − Uⁿ (or
 // midpoint_end's QP, which balances it at the midpoint) leaves: it solves the static
-// problem (14) at t^{n+1}, computed after the step by FullStepReconstruction whenever
-// Ker B has a local basis (P1+/P0, the redistributed mass; schemes/full_step.hpp).  The
+// problem (14) at t^{n+1}, computed after the step by FullStepReconstruction (P1+/P0,
+// P1+/P1, P2/P1, the redistributed mass; schemes/full_step.hpp).  The
 // step reads Uⁿ only through B Uⁿ, so this changes the reported state, not the dynamics.
 //
 // Friction (problems/friction.hpp): midpoint_end only, with a mass that has no massless

@@ -139,7 +139,8 @@ std::vector<std::string> time_scheme_names();
 
 // The scheme cdyn recommends for a problem (docs/schemes.md, "which scheme is the
 // default"): discrete_gradient where the full steps of eq. (14) exist and move every
-// constrained unknown (P1+/P0, the redistributed mass), midpoint_end otherwise — the two
+// constrained unknown (P1+/P0, P1+/P1, P2/P1, the redistributed mass), midpoint_end
+// otherwise — the two
 // never gain energy beyond round-off.
 std::string recommended_scheme(const ConstrainedProblem& problem);
 
