@@ -46,10 +46,12 @@ echo "== (j) friction: the frictional contact step against the frictionless one,
 $PY "$ROOT/bench/bench_friction.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/friction" --repeat 2
 echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
-echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 8 minutes"
+echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 7 minutes"
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
-echo "== (k) three dimensions: the cube's contact step against its unknowns, the factor and the CG path"
-$PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24,32
+echo "== (k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 24"
+# (the factor at n = 32, 3.5 more minutes: --linear factor --sizes 32)
+$PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24,32 --linear cg
+$PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24 --linear factor
 if [ -f "$BUILD/kernel/libcdyn_petsc.so" ]; then
   echo "== (l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 5 minutes"
   $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 16,32 --pcs jacobi --log
