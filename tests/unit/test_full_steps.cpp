@@ -8,7 +8,7 @@
 //        solves (14): its reduced gradient Zᵀ(AW − L) vanishes where the bound is
 //        inactive and pushes into the bound where it is active; the method of
 //        multipliers gives the local basis's state on P1+/P0, and solves (14) for P2/P1
-//        and P1+/P1, which have no local basis;
+//        and P1+/P1, which have no local basis, or reports that (14) has no solution;
 //  (iii) midpoint with reconstruction: the full steps are feasible to the QP tolerance
 //        (the extrapolation alone leaves them below the obstacle by up to 17 % of the
 //        initial height), and J is conserved to round-off on every step whose active
@@ -191,6 +191,24 @@ TEST(FullSteps, PairsWithoutALocalBasisReconstructByMultipliers) {
     const Eigen::VectorXd lambda = g - Bd.transpose() * mu;
     for (int i : active) EXPECT_GE(lambda[i], -1e-9 * scale) << label(m) << " unknown " << i;
     EXPECT_GT(active.size(), 0u) << label(m);
+  }
+}
+
+TEST(FullSteps, InfeasibleStaticProblemIsReported) {
+  // P1+/P1 has B ≥ 0 entrywise (hats, bubbles and P1 test functions are nonnegative), so
+  // bounds D ≥ 1 on every unknown make B D = 0 impossible: (14) has no solution, and the
+  // reconstruction must say so instead of returning a state off the fibre.
+  const Mesh mesh = unit_square_mesh(4);
+  ConstrainedProblem p = membrane(mesh, Method{Element::P1Bubble, "P1"}, true);
+  p.lower = Eigen::VectorXd::Ones(p.n_free());
+  FullStepReconstruction reconstruct(p, 1e-10);
+  ASSERT_EQ(reconstruct.method(), FullStepReconstruction::Method::Multipliers);
+  try {
+    reconstruct(Eigen::VectorXd::Zero(p.n_free()), 0.0);
+    ADD_FAILURE() << "no error";
+  } catch (const NumericalError& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("eq. 14"), std::string::npos) << e.what();
   }
 }
 
