@@ -8,9 +8,13 @@ exact corrected step (cdyn: a local basis of Ker B, a lagged correction, secant 
     ρ u_tt − E u_xx = 0 on (0, 1), E = ρ = 1, u(1) = 0, u(0, t) ≥ 0,
     u(x, 0) = (1 − x)/2, u_t(x, 0) = 0.
 
-W^h = P1 plus a quadratic bubble per cell (GetFEM's FEM_PK_HIERARCHICAL(1,2): the hat
-functions and one edge bubble), H^h = P0 (FEM_PK(1,0)), B_ij = ∫ψ_i φ_j, C_ij = ∫ψ_i ψ_j,
-A_ij = ∫φ_i' φ_j', exact integration.  One constraint, W_0 ≥ 0 at x = 0.
+-pair P1+/P0 (default): W^h = P1 plus a quadratic bubble per cell (GetFEM's
+FEM_PK_HIERARCHICAL(1,2): the hat functions and one edge bubble), H^h = P0 (FEM_PK(1,0)).
+-pair P2/P1: W^h = Lagrange P2 (FEM_PK(1,2)), H^h = P1 (FEM_PK(1,1)) without its dof at
+the clamped end (as cdyn drops the velocity dofs of a Dirichlet boundary); cdyn solves
+(14) there by the method of multipliers, this script by the same dense null space.
+B_ij = ∫ψ_i φ_j, C_ij = ∫ψ_i ψ_j, A_ij = ∫φ_i' φ_j', exact integration.  One constraint,
+W_0 ≥ 0 at x = 0.
 
   - Ψ(U): the potential ½WᵀAW of the solution W of min {½WᵀAW : B W = B U, W_0 ≥ 0}
     (the seed's eq. (14)), W = U + N d with N an orthonormal basis of Ker B
@@ -24,7 +28,7 @@ A_ij = ∫φ_i' φ_j', exact integration.  One constraint, W_0 ≥ 0 at x = 0.
     doubling away from 0, the root nearest 0; if no bracket exists within
     4c² + 2β > 0, two steps of dt/2 (recursively), as cdyn does.
 
-    /usr/bin/python3 reference_scripts/getfem_discrete_gradient.py -n 40 -dt 0.0125 -steps 480 -out dg.csv
+    /usr/bin/python3 reference_scripts/getfem_discrete_gradient.py -n 40 -dt 0.0125 -steps 480 -out dg.csv [-pair P2/P1]
 writes  step,t,E_total,u_contact.
 """
 import argparse
@@ -35,12 +39,15 @@ from scipy.linalg import null_space
 from scipy.optimize import brentq
 
 
-def assemble(n):
+PAIRS = {"P1+/P0": ("FEM_PK_HIERARCHICAL(1,2)", "FEM_PK(1,0)"), "P2/P1": ("FEM_PK(1,2)", "FEM_PK(1,1)")}
+
+
+def assemble(n, pair):
     m = gf.Mesh("cartesian", np.linspace(0.0, 1.0, n + 1))
     mw = gf.MeshFem(m, 1)
-    mw.set_fem(gf.Fem("FEM_PK_HIERARCHICAL(1,2)"))
+    mw.set_fem(gf.Fem(PAIRS[pair][0]))
     mh = gf.MeshFem(m, 1)
-    mh.set_fem(gf.Fem("FEM_PK(1,0)"))
+    mh.set_fem(gf.Fem(PAIRS[pair][1]))
     mim = gf.MeshIm(m, gf.Integ("IM_GAUSS1D(6)"))
     md = gf.Model("real")
     md.add_fem_variable("u", mw)
@@ -54,6 +61,10 @@ def assemble(n):
     A = A[iu:iu + nu, iu:iu + nu]
     x = mw.basic_dof_nodes()[0]
     vertex = [i for i in range(nu) if np.min(np.abs(x[i] - np.linspace(0.0, 1.0, n + 1))) < 1e-12]
+    if pair == "P2/P1":  # the velocity vanishes at the clamped end: drop its H^h dof
+        xh = mh.basic_dof_nodes()[0]
+        keep = [i for i in range(nv) if abs(xh[i] - 1.0) > 1e-12]
+        B, C = B[keep, :], C[np.ix_(keep, keep)]
     return A, B, C, x, vertex
 
 
@@ -63,8 +74,9 @@ def main():
     p.add_argument("-dt", type=float, default=0.0125)
     p.add_argument("-steps", type=int, default=480)
     p.add_argument("-out", default="getfem_discrete_gradient.csv")
+    p.add_argument("-pair", default="P1+/P0", choices=sorted(PAIRS))
     a = p.parse_args()
-    A, B, C, x, vertex = assemble(a.n)
+    A, B, C, x, vertex = assemble(a.n, a.pair)
     # u(1) = 0: drop the vertex dof at x = 1 (the bubbles vanish there)
     clamped = [i for i in vertex if abs(x[i] - 1.0) < 1e-12]
     free = [i for i in range(len(x)) if i not in clamped]
@@ -133,11 +145,11 @@ def main():
         V1 = 2 * c * (Cinv @ (B @ (W1 - U))) - V
         return W1, V1
 
-    # u₀ = (1 − x)/2 in the hierarchical basis: the vertex values, bubbles 0 (u₀ is affine);
-    # its Ker B part from (14)
-    at_vertex = np.zeros(len(x))
-    at_vertex[vertex] = 1.0
-    U = reconstruct(at_vertex * (1.0 - x) / 2.0)
+    # u₀ = (1 − x)/2: in the hierarchical basis the vertex values, bubbles 0; in the
+    # Lagrange P2 basis the values at every node (u₀ is affine); its Ker B part from (14)
+    at_node = np.zeros(len(x))
+    at_node[vertex if a.pair == "P1+/P0" else slice(None)] = 1.0
+    U = reconstruct(at_node * (1.0 - x) / 2.0)
     V = np.zeros(B.shape[0])
 
     def energy():

@@ -182,6 +182,18 @@ class DiscreteGradient final : public StepQPScheme {
       return it;
     };
     auto small_energy = [&](const Iterate& it) { return std::abs(it.dH) <= energy_tol_ * it.terms; };
+    // The next β: the secant through the last two iterates, where its slope is that of
+    // Gonzalez's model ΔH(β) ≈ ΔH(β_b) − (β − β_b)|Δq|²_C within a factor 10; else the
+    // model's own root.  Near the root the two ΔH are round-off and their secant slope is
+    // noise: measured on the P2/P1 bar at t = 2, a secant step from β = −7.588 to
+    // −9580, which sent the step into substeps.
+    auto secant = [&](const Iterate& a, const Iterate& b) {
+      const double model = b.dq2 > 0 ? b.beta + b.dH / b.dq2 : b.beta;
+      if (b.beta == a.beta || b.dH == a.dH) return model;
+      const double slope = (b.dH - a.dH) / (b.beta - a.beta);
+      if (!(slope < -0.1 * b.dq2 && slope > -10 * b.dq2)) return model;
+      return b.beta - b.dH / slope;
+    };
     // The lag is resolved when one more iteration would move X by less than the QP
     // tolerance: the lag contracts by |β|/(2c²) (S = 4c²M + A against the correction
     // 2βM), so the next move is at most that times the last one.  (Asking the last move
@@ -200,7 +212,7 @@ class DiscreteGradient final : public StepQPScheme {
         // the lag contracts by |β|/(2c²): at |β| ≥ c² it no longer pays (or diverges)
         if (k >= kMaxIterations || !(std::abs(b.beta) < c * c)) return false;
         // the secant on ΔH(β) (β kept once ΔH is small: only the lag is left to settle)
-        const double next = small_energy(b) || b.dH == a.dH ? b.beta : b.beta - b.dH * (b.beta - a.beta) / (b.dH - a.dH);
+        const double next = small_energy(b) ? b.beta : secant(a, b);
         Iterate c_it = iterate(next, &b.X);
         a = std::move(b);
         b = std::move(c_it);
