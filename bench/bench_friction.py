@@ -66,10 +66,11 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--solver", default="pdas,pgs")
+    ap.add_argument("--scenes", default="", help="a comma-separated subset of " + ",".join(SCENES))
     a = ap.parse_args()
     print(f"{'scene':7} {'solver':6} {'law':24} {'frictionless ms':>16} {'friction ms':>12} {'ratio':>6} "
           f"{'QP iters':>9} {'W_f':>10}")
-    for name, file in SCENES.items():
+    for name, file in ((k, v) for k, v in SCENES.items() if not a.scenes or k in a.scenes.split(",")):
         scene = os.path.join(a.source, "data/scenes", file)
         for solver in a.solver.split(","):
             for law, sets in LAWS.items():
