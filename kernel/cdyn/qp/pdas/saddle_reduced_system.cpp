@@ -4,13 +4,20 @@
 #include "cdyn/qp/pdas/saddle_reduced_system.hpp"
 
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
 
 #include "cdyn/base/error.hpp"
 
 namespace cdyn {
 
+// UMFPACK's 64-bit interface (umfpack_dl): the 32-bit one addresses at most 2³¹ words
+// of workspace, which the LU of a 3D P2/P1 saddle matrix exceeds (measured: the cube at
+// n = 16, 122 550 rows, "out of memory" at 3 GB; with umfpack_dl it runs, 11.2 GB and
+// 76 s a step).  K̃ is copied into 64-bit indices for it.
+using LongMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
 struct SaddleReducedSystem::LU {
-  Eigen::UmfPackLU<SparseMatrix> umfpack;
+  LongMatrix K;  // K̃ as UMFPACK reads it (UmfPackLU keeps a reference)
+  Eigen::UmfPackLU<LongMatrix> umfpack;
 };
 
 SaddleReducedSystem::SaddleReducedSystem(PDASCounters& counters)
@@ -53,7 +60,8 @@ void SaddleReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   K_ = std::move(K);
   K_tilde_ = K_;
   if (!same_pattern) {
-    lu_->umfpack.analyzePattern(K_);
+    lu_->K = K_;
+    lu_->umfpack.analyzePattern(lu_->K);
     ++counters_.analyses;
     if (lu_->umfpack.info() != Eigen::Success)
       throw NumericalError("pdas: UMFPACK could not analyse the saddle matrix [[A, c B^T], [B, -C]]");
@@ -64,11 +72,19 @@ void SaddleReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
 void SaddleReducedSystem::set_held(const HeldSet& held, bool fresh) {
   if (lu_factorized_ && held == lu_held_ && !fresh) return;
   replace_held_by_identity(K_, held, K_tilde_);
-  lu_->umfpack.factorize(K_tilde_);
+  std::copy(K_tilde_.valuePtr(), K_tilde_.valuePtr() + K_tilde_.nonZeros(), lu_->K.valuePtr());  // same pattern
+  lu_->umfpack.factorize(lu_->K);
   ++counters_.factorizations;
-  if (lu_->umfpack.info() != Eigen::Success)
-    throw NumericalError("pdas: UMFPACK found the saddle matrix singular (is C positive definite and "
-                         "A + c B^T C^-1 B positive definite?)");
+  if (lu_->umfpack.info() != Eigen::Success) {
+    // UMFPACK's status tells a singular matrix from a factorization it could not hold
+    const int status = static_cast<int>(lu_->umfpack.umfpackFactorizeReturncode());
+    if (status == UMFPACK_WARNING_singular_matrix)
+      throw NumericalError("pdas: UMFPACK found the saddle matrix singular (is C positive definite and "
+                           "A + c B^T C^-1 B positive definite?)");
+    throw NumericalError("pdas: UMFPACK could not factorize the saddle matrix of " + std::to_string(K_tilde_.rows()) +
+                         " rows (status " + std::to_string(status) +
+                         (status == UMFPACK_ERROR_out_of_memory ? ": out of memory, its LU's fill" : "") + ")");
+  }
   lu_factorized_ = true;
   lu_held_ = held;
 }
