@@ -79,7 +79,7 @@ void FullStepReconstruction::start_multipliers(SaddleForm form) {
   // A + ρ Bᵀ C⁻¹ B as the saddle form {A, √ρ B, C, 1}: its blocks [[A, √ρ Bᵀ],
   // [√ρ B, −C]] are of comparable size, where {A, B, C, ρ} (ρ ~ 1e7 … 1e13) made UMFPACK
   // pivot away from its fill-reducing order (measured on the membrane at n = 40, P2/P1,
-  // dt = 0.001: 15.8 against 30.6 ms a step of the reconstructed midpoint).
+  // dt = 0.001: 18.3–19.8 against 47–49 ms a step of the reconstructed midpoint).
   B_ = form.B;
   form.B *= std::sqrt(rho_);
   form.c = 1.0;
