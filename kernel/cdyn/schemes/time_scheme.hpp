@@ -71,7 +71,8 @@ struct StepStats {
 //    on Ker B (backward_euler, newmark), or Ker B = {0} (energy_conserving and
 //    paoli_schatzman, which need an invertible M);
 //  - reconstructed: eq. (14) solved after the step (schemes/full_step.hpp);
-//  - extrapolated: U^{n+1} = 2U^{n+½} − Uⁿ as it comes (no local basis of Ker B).
+//  - extrapolated: U^{n+1} = 2U^{n+½} − Uⁿ as it comes (time.reconstruct = false, or a
+//    constrained unknown that Ker B cannot move).
 enum class FullSteps { Solved, Reconstructed, Extrapolated };
 std::string to_string(FullSteps f);
 
