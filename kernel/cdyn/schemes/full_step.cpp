@@ -141,9 +141,10 @@ Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U,
   // state, near round-off: Ψ's error is first order in it (the multiplier times the
   // residual), unlike the QP's, which is second order on the fibre, and the energy-exact
   // scheme asks Ψ to 1e-12 (time.energy_tol).  (4 ε instead took a third iteration
-  // where two reach 1e-15.)  The state's scale
-  // is that of kkt_residual (qp/kkt.hpp): |U|, |W| and the displacement the force
-  // L − AU would cause by itself, |diag(A)⁻¹(L − AU)| (the one left for a body at rest).
+  // where two reach 1e-15.)  The state's scale is that of kkt_residual (qp/kkt.hpp):
+  // |U|, |W| and the displacement the force L − AU would cause by itself,
+  // |diag(A)⁻¹(L − AU)| (the one left for a body at rest).  The iteration stops there,
+  // or when the residual no longer halves (round-off, or no solution).
   const double target = 1e-14;
   double residual = std::numeric_limits<double>::infinity(), scale = 0.0;
   iterations_ = 0;
