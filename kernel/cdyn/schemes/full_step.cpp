@@ -34,11 +34,13 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
     method_ = Method::LocalBasis;
     return;
   }
-  SaddleForm form = p.mass->saddle(p.A, 1.0);
   const std::vector<char> b = bounded(p);
-  std::optional<MasslessModes> modes = multipliers ? std::nullopt : massless_modes(form.B, b);
+  const SparseMatrix B = p.mass->saddle(SparseMatrix(p.n_free(), p.n_free()), 1.0).B;
+  std::optional<MasslessModes> modes = multipliers ? std::nullopt : massless_modes(B, b);
   if (!modes) {
-    start_multipliers(std::move(form));
+    // (the pairs: their velocity() is C⁻¹B and momentum() Bᵀ, which the method uses; a
+    // classical model's saddle factors are internal)
+    if (!p.mass->velocity_is_rate()) method_ = Method::Multipliers;
     return;
   }
   modes_ = std::move(*modes);
@@ -63,7 +65,8 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   qp_.upper = Eigen::VectorXd::Constant(m, std::numeric_limits<double>::infinity());
 }
 
-void FullStepReconstruction::start_multipliers(SaddleForm form) {
+void FullStepReconstruction::prepare_multipliers() {
+  SaddleForm form = p_.mass->saddle(p_.A, 1.0);
   // ρ = 10³ ω²_max, ω²_max estimated by the largest ratio A_jj / M_jj with the diagonal
   // M_jj ≈ Σ_k B_kj² / C_kk (qp/kkt.hpp's scaling): the stiffest free unknown's
   // frequency, within the factor of the element's Rayleigh quotients.
@@ -71,29 +74,24 @@ void FullStepReconstruction::start_multipliers(SaddleForm form) {
   Eigen::VectorXd m = Eigen::VectorXd::Zero(p_.n_free());
   for (int k = 0; k < form.B.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(form.B, k); it; ++it) m[it.col()] += it.value() * it.value() / Cd[it.row()];
+  A_diagonal_ = p_.A.diagonal();
   double omega2 = 0.0;
   for (int j = 0; j < p_.n_free(); ++j)
-    if (m[j] > 0) omega2 = std::max(omega2, p_.A.coeff(j, j) / m[j]);
-  if (!(omega2 > 0)) return;  // no mass or no stiffness: nothing this method can do
+    if (m[j] > 0) omega2 = std::max(omega2, A_diagonal_[j] / m[j]);
+  if (!(omega2 > 0))
+    throw NumericalError("full-step reconstruction (eq. 14): no unknown has both mass and stiffness");
   rho_ = 1e3 * omega2;
   // A + ρ Bᵀ C⁻¹ B as the saddle form {A, √ρ B, C, 1}: its blocks [[A, √ρ Bᵀ],
   // [√ρ B, −C]] are of comparable size, where {A, B, C, ρ} (ρ ~ 1e7 … 1e13) made UMFPACK
   // pivot away from its fill-reducing order (measured on the membrane at n = 40, P2/P1,
   // dt = 0.001: 18.3–19.8 against 47–49 ms a step of the reconstructed midpoint).
-  B_ = form.B;
   form.B *= std::sqrt(rho_);
   form.c = 1.0;
-  C_ = std::make_unique<SparseCholesky>();
-  C_->analyze(form.C);
-  if (C_->factorize(form.C) >= 0) throw NumericalError("the velocity mass C is not positive definite");
   qp_.saddle = std::move(form);
   qp_.lower.resize(p_.n_free());
   qp_.upper.resize(p_.n_free());
-  mu_ = Eigen::VectorXd::Zero(qp_.saddle->B.rows());
-  A_diagonal_ = p_.A.diagonal();
   all_unknowns_.resize(p_.n_free());
   for (int i = 0; i < p_.n_free(); ++i) all_unknowns_[i] = i;
-  method_ = Method::Multipliers;
 }
 
 void FullStepReconstruction::set_bounds(const Eigen::VectorXd& U, const std::vector<int>& unknowns, double t) {
@@ -134,6 +132,8 @@ Eigen::VectorXd FullStepReconstruction::by_local_basis(const Eigen::VectorXd& U,
 }
 
 Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U, double t, double* kkt) {
+  if (!qp_.saddle) prepare_multipliers();
+  if (mu_.size() == 0) mu_ = Eigen::VectorXd::Zero(p_.mass->n_velocity());
   const Eigen::VectorXd f = p_.load(t) - symmetric_times(p_.A, U);
   set_bounds(U, all_unknowns_, t);
   const double force_scale = f.cwiseQuotient(A_diagonal_).lpNorm<Eigen::Infinity>();
@@ -149,11 +149,11 @@ Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U,
   double residual = std::numeric_limits<double>::infinity(), scale = 0.0;
   iterations_ = 0;
   for (int k = 0; k < 100; ++k) {
-    qp_.r = f + transpose_times(B_, mu_);
+    qp_.r = f + p_.mass->momentum(mu_);
     last_ = solver_->solve(qp_, has_last_ ? &last_ : nullptr);
     has_last_ = true;
     ++iterations_;
-    const Eigen::VectorXd y = C_->solve(B_ * last_.X);
+    const Eigen::VectorXd y = p_.mass->velocity(last_.X);  // C⁻¹ B D
     mu_ -= rho_ * y;
     const double previous = residual;
     residual = y.lpNorm<Eigen::Infinity>();
@@ -171,13 +171,13 @@ Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U,
 
 void FullStepReconstruction::store(SchemeMemory& m) const {
   store_warm_start(m, "full_step", last_, has_last_);
-  if (method_ == Method::Multipliers) m.vectors["full_step.multiplier"] = mu_;
+  m.store_if_any("full_step.multiplier", mu_);
 }
 
 void FullStepReconstruction::restore(const SchemeMemory& m) {
   if (solver_) solver_->clear();
   has_last_ = load_warm_start(m, "full_step", last_);
-  if (method_ == Method::Multipliers) mu_ = m.vector("full_step.multiplier");
+  mu_ = m.vector_or_empty("full_step.multiplier");
 }
 
 }  // namespace cdyn

@@ -27,9 +27,10 @@
 // of the mass: each iteration is the bound-constrained QP
 //     min ½ Dᵀ(A + ρ Bᵀ C⁻¹ B) D − (L − AU + Bᵀμ)ᵀ D,   lower − U ≤ D ≤ upper − U,
 // whose matrix is a step matrix A + ρ M in saddle form (qp/bound_qp.hpp), followed by
-// μ ← μ − ρ C⁻¹ B D.  On a fixed active set the error in μ contracts by 1/(1 + ρ θ) per
-// iteration, θ the generalized eigenvalues of (B A⁻¹ Bᵀ, C), all ≥ 1/ω²_max (ω_max the
-// highest free frequency): ρ = 10³ ω²_max makes every iteration gain three digits.
+// μ ← μ − ρ C⁻¹ B D (C⁻¹B and Bᵀ by the mass model's velocity() and momentum()).  On a
+// fixed active set the error in μ contracts by 1/(1 + ρ θ) per iteration, θ the
+// generalized eigenvalues of (B A⁻¹ Bᵀ, C), all ≥ 1/ω²_max (ω_max the highest free
+// frequency): ρ = 10³ ω²_max makes every iteration gain three digits.
 // The multiplier is warm-started from the last call, the saddle matrix is factorized
 // once per active set; measured cost in docs/schemes.md.
 #pragma once
@@ -37,7 +38,6 @@
 #include <memory>
 #include <optional>
 
-#include "cdyn/linalg/sparse_cholesky.hpp"
 #include "cdyn/mass/massless_modes.hpp"
 #include "cdyn/problems/constrained_problem.hpp"
 #include "cdyn/qp/step_solver.hpp"
@@ -79,7 +79,9 @@ class FullStepReconstruction {
   void restore(const SchemeMemory& m);
 
  private:
-  void start_multipliers(SaddleForm form);
+  // The saddle-form QP of the multipliers (made on the first call: deciding the method
+  // needs only B, so that asking needed() costs no copy of A).
+  void prepare_multipliers();
   // The QP's bounds lower − U ≤ d ≤ upper − U at K̄^h(t), d_k moving unknowns[k].
   void set_bounds(const Eigen::VectorXd& U, const std::vector<int>& unknowns, double t);
   Eigen::VectorXd by_local_basis(const Eigen::VectorXd& U, double t, double* kkt);
@@ -94,10 +96,9 @@ class FullStepReconstruction {
   std::unique_ptr<StepSolver> solver_;
   QPResult last_;
   bool has_last_ = false;
-  // The method of multipliers: ρ, B, C's factor, the multiplier μ of B D = 0.
+  // The method of multipliers: ρ and the multiplier μ of B D = 0 (C⁻¹B and Bᵀ are the
+  // mass model's velocity() and momentum()).
   double rho_ = 0.0;
-  SparseMatrix B_;
-  std::unique_ptr<SparseCholesky> C_;
   Eigen::VectorXd mu_;
   std::vector<int> all_unknowns_;
   Eigen::VectorXd A_diagonal_;
