@@ -21,21 +21,13 @@ namespace {
 using Ipopt::Index;
 using Ipopt::Number;
 
-constexpr double kIpoptInfinity = 2e19;  // Ipopt reads |bound| ≥ 1e19 as no bound
-
 // Variables (X, p, q), X of size n, p and q one per contact; constraints
 // X_T,k − p_k + q_k = X̂_T,k.  s_k = ∞ (bonded) holds p_k = q_k = 0.
 class SplitSlipProgram : public IpoptProgram {
  public:
   SplitSlipProgram(const BoundQP& qp, const FrictionConditions& f, const Eigen::VectorXd& s, const Eigen::VectorXd& x0)
       : IpoptProgram(qp.size()), qp_(qp), f_(f), s_(s), x0_(x0), n_(qp.size()), m_(static_cast<int>(f.contacts.size())) {
-    for (int j = 0; j < qp.S.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(qp.S, j); it; ++it)
-        if (it.row() >= j) {
-          h_rows_.push_back(static_cast<Index>(it.row()));
-          h_cols_.push_back(j);
-          h_vals_.push_back(it.value());
-        }
+    lower_triangle(qp.S, 0, 1.0, h_rows_, h_cols_, h_vals_);
   }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
@@ -146,14 +138,9 @@ class ConeSlipProgram : public IpoptProgram {
         n_(qp.size()),
         m_(static_cast<int>(f.contacts.size())),
         diagonal_(qp.size(), -1) {
-    for (int j = 0; j < qp.S.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(qp.S, j); it; ++it)
-        if (it.row() >= j) {
-          if (it.row() == j) diagonal_[j] = static_cast<Index>(h_vals_.size());
-          h_rows_.push_back(static_cast<Index>(it.row()));
-          h_cols_.push_back(j);
-          h_vals_.push_back(it.value());
-        }
+    lower_triangle(qp.S, 0, 1.0, h_rows_, h_cols_, h_vals_);
+    for (std::size_t e = 0; e < h_rows_.size(); ++e)
+      if (h_rows_[e] == h_cols_[e]) diagonal_[h_cols_[e]] = static_cast<Index>(e);
     for (const FrictionContact& c : f.contacts)
       for (int t : c.tangential)
         if (diagonal_[t] < 0) throw InputError("friction (ipopt): S has no diagonal entry at a tangential unknown");

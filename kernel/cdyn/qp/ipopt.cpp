@@ -19,20 +19,6 @@ namespace {
 using Ipopt::Index;
 using Ipopt::Number;
 
-constexpr double kIpoptInfinity = 2e19;  // Ipopt reads |bound| ≥ 1e19 as no bound
-
-// Lower-triangle entries (row ≥ col) of M, shifted by `offset`, scaled by `factor`.
-void lower_triangle(const SparseMatrix& M, int offset, double factor, std::vector<Index>& rows,
-                    std::vector<Index>& cols, std::vector<double>& vals) {
-  for (int j = 0; j < M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
-      if (it.row() >= j) {
-        rows.push_back(offset + static_cast<Index>(it.row()));
-        cols.push_back(offset + j);
-        vals.push_back(factor * it.value());
-      }
-}
-
 // The QP as an Ipopt nonlinear program (variables X, or (U, Z) in saddle form).
 class BoundQPProgram : public IpoptProgram {
  public:

@@ -1,13 +1,30 @@
 // qp/ipopt_program.hpp — what the step solvers' Ipopt programs (qp/ipopt.cpp,
 // qp/friction_ipopt.cpp) share: Ipopt's status and the solution's first n variables X,
-// kept when Ipopt finishes.
+// kept when Ipopt finishes; Ipopt's infinity; a matrix's lower triangle as Hessian entries.
 #pragma once
 
 #include <coin/IpTNLP.hpp>
 
 #include <Eigen/Core>
+#include <vector>
+
+#include "cdyn/base/sparse.hpp"
 
 namespace cdyn {
+
+constexpr double kIpoptInfinity = 2e19;  // Ipopt reads |bound| ≥ 1e19 as no bound
+
+// Lower-triangle entries (row ≥ col) of M, shifted by `offset`, scaled by `factor`.
+inline void lower_triangle(const SparseMatrix& M, int offset, double factor, std::vector<Ipopt::Index>& rows,
+                           std::vector<Ipopt::Index>& cols, std::vector<double>& vals) {
+  for (int j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
+      if (it.row() >= j) {
+        rows.push_back(offset + static_cast<Ipopt::Index>(it.row()));
+        cols.push_back(offset + j);
+        vals.push_back(factor * it.value());
+      }
+}
 
 class IpoptProgram : public Ipopt::TNLP {
  public:
