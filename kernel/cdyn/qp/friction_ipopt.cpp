@@ -329,23 +329,7 @@ FrictionResult solve_friction_ipopt(BoundQP& qp, const FrictionConditions& f, co
     if (result.residual <= options.tol || moved <= 1e-8 * size || outer >= max_outer) break;
   }
   // The sets of Ipopt's X, for the crossover and for the next step's warm start.
-  result.stick.assign(m, 1);
-  result.direction = Eigen::VectorXd::Zero(qp.size());
-  for (int k = 0; k < m; ++k) {  // (the rule of the semismooth Newton method: y = d − λ_T/D)
-    const std::vector<int>& t = f.contacts[k].tangential;
-    double Dk = std::numeric_limits<double>::infinity(), norm = 0.0;
-    for (int j : t) Dk = std::min(Dk, D[j]);
-    std::vector<double> y;
-    for (int j : t) {
-      y.push_back(X[j] - f.reference[j] - result.qp.reaction[j] / Dk);
-      norm += y.back() * y.back();
-    }
-    norm = std::sqrt(norm);
-    if (norm > s[k] / Dk) {
-      result.stick[k] = 0;
-      for (std::size_t j = 0; j < t.size(); ++j) result.direction[t[j]] = y[j] / norm;
-    }
-  }
+  slip_sets(f, X, result.qp.reaction, s, D, result.stick, result.direction);
   result.converged = result.residual <= options.tol;
   if (!result.converged) {
     // crossover: the semismooth Newton method from Ipopt's sets (exact solves)

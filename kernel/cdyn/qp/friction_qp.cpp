@@ -31,6 +31,27 @@ bool in_space(const FrictionConditions& f) {
   return std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) { return c.tangential.size() > 1; });
 }
 
+void slip_sets(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+               const Eigen::VectorXd& s, const Eigen::VectorXd& D, std::vector<char>& stick,
+               Eigen::VectorXd& direction) {
+  stick.assign(f.contacts.size(), 1);
+  direction = Eigen::VectorXd::Zero(X.size());
+  for (std::size_t k = 0; k < f.contacts.size(); ++k) {
+    const std::vector<int>& t = f.contacts[k].tangential;
+    double Dk = std::numeric_limits<double>::infinity(), norm = 0.0;
+    for (int j : t) Dk = std::min(Dk, D[j]);
+    std::vector<double> y;
+    for (int j : t) {
+      y.push_back(X[j] - f.reference[j] - reaction[j] / Dk);
+      norm += y.back() * y.back();
+    }
+    norm = std::sqrt(norm);
+    if (norm <= s[k] / Dk) continue;
+    stick[k] = 0;
+    for (std::size_t j = 0; j < t.size(); ++j) direction[t[j]] = y[j] / norm;
+  }
+}
+
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction) {
   const int m = static_cast<int>(f.contacts.size());
   Eigen::VectorXd s(m);

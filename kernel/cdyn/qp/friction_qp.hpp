@@ -79,6 +79,15 @@ double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const
 // Whether a contact has two tangential unknowns (a problem in space).
 bool in_space(const FrictionConditions& f);
 
+// The tangential sets of (X, λ) by the semismooth Newton method's rule (Hüeber, Stadler,
+// Wohlmuth 2008): per contact y = d − λ_T/D_k, d = X_T − X̂_T and D_k the smallest of D
+// on its tangential unknowns; sticking where |y| ≤ s_k/D_k, else slipping along
+// σ = y/|y|.  stick has one entry per contact, direction σ on the tangential unknowns of
+// the slipping ones (0 elsewhere, size n).
+void slip_sets(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+               const Eigen::VectorXd& s, const Eigen::VectorXd& D, std::vector<char>& stick,
+               Eigen::VectorXd& direction);
+
 // The threshold of each contact: s, or μ max(λ_N, 0) from the reaction λ.
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction);
 

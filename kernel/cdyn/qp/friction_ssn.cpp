@@ -20,25 +20,17 @@ struct Tangential {
   std::vector<double> sigma;
 };
 
-// The sets from y = d − λ_T/D (HSW's rule): stick where |y| ≤ s/D.
+// The sets of (X, λ) for thresholds s (qp/friction_qp.hpp, slip_sets).
 std::vector<Tangential> sets_of(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
                                 const Eigen::VectorXd& s, const Eigen::VectorXd& D) {
+  std::vector<char> stick;
+  Eigen::VectorXd direction;
+  slip_sets(f, X, reaction, s, D, stick, direction);
   std::vector<Tangential> sets(f.contacts.size());
-  for (std::size_t k = 0; k < f.contacts.size(); ++k) {
-    const FrictionContact& c = f.contacts[k];
-    double Dk = std::numeric_limits<double>::infinity();
-    for (int t : c.tangential) Dk = std::min(Dk, D[t]);
-    std::vector<double> y;
-    double norm = 0.0;
-    for (int t : c.tangential) {
-      y.push_back(X[t] - f.reference[t] - reaction[t] / Dk);
-      norm += y.back() * y.back();
-    }
-    norm = std::sqrt(norm);
-    if (norm <= s[k] / Dk) continue;  // stick
-    sets[k].stick = false;
-    for (double& v : y) v /= norm;
-    sets[k].sigma = y;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    sets[k].stick = stick[k] != 0;
+    if (!sets[k].stick)
+      for (int t : f.contacts[k].tangential) sets[k].sigma.push_back(direction[t]);
   }
   return sets;
 }
@@ -107,7 +99,6 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   FrictionResult result;
   QPResult last;
   int inner_iterations = 0, fallbacks = 0;
-  std::vector<Tangential> sets_final;
   std::vector<std::vector<Tangential>> visited;  // the sets tried for the current s
   double last_tresca = std::numeric_limits<double>::infinity();  // the last Tresca residual for s
   std::string detail;
@@ -129,7 +120,6 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
     qp.upper = upper0;
     result.residual = friction_residual(qp, f, last.X, result.qp.reaction, s_new, D);
     result.converged = result.residual <= options.tol;
-    sets_final = sets_of(f, last.X, result.qp.reaction, s_new, D);
     if (result.converged) break;
     if (it >= max_iterations) {
       detail = "maximum number of outer iterations reached";
@@ -193,14 +183,7 @@ FrictionResult solve_friction_ssn(BoundQP& qp, const FrictionConditions& f, Step
   qp.r = r0;
   qp.lower = lower0;
   qp.upper = upper0;
-  result.stick.assign(m, 1);
-  result.direction = Eigen::VectorXd::Zero(qp.size());
-  for (int k = 0; k < m; ++k) {
-    result.stick[k] = sets_final[k].stick;
-    if (!sets_final[k].stick)
-      for (std::size_t j = 0; j < f.contacts[k].tangential.size(); ++j)
-        result.direction[f.contacts[k].tangential[j]] = sets_final[k].sigma[j];
-  }
+  slip_sets(f, result.qp.X, result.qp.reaction, result.threshold, D, result.stick, result.direction);
   result.status = contact_status(qp, f, result.qp.X, result.qp.reaction);
   result.qp.iterations = inner_iterations;
   result.fallbacks = fallbacks;
