@@ -5,7 +5,7 @@ same scene frictionless, on the elastic disk (data/scenes/disk.toml), the disk
 thrown at the 30° ramp (data/scenes/ramp.toml) and, in space, the plate sliding down an
 incline of data/scenes/incline_block_3d.toml (two tangential unknowns a vertex).
 
-Usage: bench_friction.py CDYN SOURCE_DIR OUT_DIR [--repeat R] [--solver pdas,pgs]
+Usage: bench_friction.py CDYN SOURCE_DIR OUT_DIR [--repeat R] [--solver pdas,pgs] [--scenes disk,ramp,plate3d]
 
 Both runs use backward Euler (the scheme that takes friction with P1+/P0,
 docs/friction.md) and the same step solver; the frictional run adds the rotation of
@@ -68,6 +68,9 @@ def main():
     ap.add_argument("--solver", default="pdas,pgs")
     ap.add_argument("--scenes", default="", help="a comma-separated subset of " + ",".join(SCENES))
     a = ap.parse_args()
+    unknown = [n for n in a.scenes.split(",") if n and n not in SCENES]
+    if unknown:
+        ap.error(f"--scenes: unknown {', '.join(unknown)} (available: {', '.join(SCENES)})")
     print(f"{'scene':7} {'solver':6} {'law':24} {'frictionless ms':>16} {'friction ms':>12} {'ratio':>6} "
           f"{'QP iters':>9} {'W_f':>10}")
     for name, file in ((k, v) for k, v in SCENES.items() if not a.scenes or k in a.scenes.split(",")):
