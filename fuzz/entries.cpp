@@ -87,7 +87,7 @@ void expression_input(std::string_view text) {
   try {
     const Field f = parse_expression(std::string(text), "fuzz");
     for (const std::array<double, 3> p : {std::array<double, 3>{0, 0, 0}, {0.5, -1, 2}, {1e300, -1e-300, NAN}})
-      (void)f(p[0], p[1], p[2]);
+      (void)f(Point{p[0], p[1], p[2]}, p[2]);
   } catch (const InputError&) {
   }
 }

@@ -19,7 +19,7 @@ void check_initial_data(const SceneSpec& s, const Mesh& mesh, const std::functio
   const int n = 2 * mesh.n_cells();
   for (int i = 0; i <= n; ++i) {
     const double x = L * i / n;
-    if (std::abs(u0(x, 0.0, 0.0) - u(x, 0.0)) > 1e-12)
+    if (std::abs(u0(Point{x}, 0.0) - u(x, 0.0)) > 1e-12)
       throw InputError("exact.solution: initial.u differs from the named solution at x = " + std::to_string(x));
   }
 }

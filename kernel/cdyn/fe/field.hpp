@@ -36,9 +36,8 @@ class Field {
              !std::is_invocable_r_v<double, F&, const Point&, double>)
   Field(F f) : f_([f = std::move(f)](const Point& p, double t) mutable { return f(p.x, p.y, t); }) {}
 
+  // The value at p (no (x, y, t) shorthand: in 3D it would silently drop z).
   double operator()(const Point& p, double t) const { return f_(p, t); }
-  // The value at (x, y, 0): the form of the 1D and 2D problems.
-  double operator()(double x, double y, double t) const { return f_(Point{x, y, 0.0}, t); }
 
   explicit operator bool() const { return static_cast<bool>(f_); }
 

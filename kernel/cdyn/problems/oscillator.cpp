@@ -16,7 +16,7 @@ ConstrainedProblem build_oscillator(const Mesh& mesh, const OscillatorData& o) {
   d.mass = {MassSpec::Model::Lumped, Element::P1, Element::P0};
   d.rho = 2.0 * o.m;  // lumped mass of the free vertex: ρh/2 = m
   const Field F = o.F;
-  d.f = [F](double x, double y, double t) { return 2.0 * F(x, y, t); };  // ∫ f φ = f/2 = F
+  d.f = [F](const Point& p, double t) { return 2.0 * F(p, t); };  // ∫ f φ = f/2 = F
   d.load_is_constant = o.load_is_constant;
   d.dirichlet_parts = {mesh.part_index("right")};
   d.dirichlet_value = [](double, double, double) { return 0.0; };

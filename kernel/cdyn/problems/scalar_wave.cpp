@@ -40,7 +40,7 @@ ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) 
     contact.push_back(i);
     if (!d.obstacle) continue;
     const Point& a = mesh.vertices[v];
-    p.lower[i] = d.obstacle_g(a.x, a.y, 0.0);
+    p.lower[i] = d.obstacle_g(a, 0.0);
     p.constrained.push_back(i);
     constrained_vertex.push_back(v);
   }
