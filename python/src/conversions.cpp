@@ -74,10 +74,17 @@ Field to_field(const py::object& value, const std::string& name) {
     return Field([c](const Point&, double) { return c; });
   }
   if (!PyCallable_Check(value.ptr()))
-    throw InputError(name, "expected a number, an expression (str) or a callable f(x, y, t)");
+    throw InputError(name, "expected a number, an expression (str) or a callable f(x, y, t) or f(x, y, z, t)");
   // The callable is kept (a reference) as long as the field: by the problem that holds it.
   py::function f = py::reinterpret_borrow<py::function>(value);
-  return Field([f](const Point& p, double t) { return f(p.x, p.y, t).cast<double>(); });
+  if (py::len(py::module_::import("inspect").attr("signature")(f).attr("parameters")) == 4)
+    return Field([f](const Point& p, double t) { return f(p.x, p.y, p.z, t).cast<double>(); });
+  // f(x, y, t) cannot see z: refused at the first point off the plane z = 0 (a 3D mesh)
+  // rather than evaluated there as if z were 0.
+  return Field([f, name](const Point& p, double t) {
+    if (p.z != 0.0) throw InputError(name, "a callable f(x, y, t) cannot depend on z: on a 3D mesh give f(x, y, z, t)");
+    return f(p.x, p.y, t).cast<double>();
+  });
 }
 
 std::vector<Field> to_fields(const py::object& value, const std::string& name) {

@@ -3,6 +3,8 @@ RuntimeError) carry the command line's one-line message, the text after "cdyn: e
 or "cdyn: numerical failure: "; warnings arrive as RuntimeWarnings with the text after
 "cdyn: warning: "."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -124,6 +126,17 @@ def test_a_python_error_in_a_datum_propagates():
     with pytest.raises(TypeError):
         cdyn.run(42)
     assert np.isfinite(cdyn.scalar_wave(cdyn.unit_square_mesh(2), f=lambda x, y, t: x * y).load(0.0)).all()
+
+
+def test_a_callable_datum_sees_z_on_a_3d_mesh(scene):
+    # f(x, y, z, t) is evaluated at the point in space; f(x, y, t), which cannot see z,
+    # is refused there instead of being evaluated as if z were 0.
+    mesh = cdyn.read_mesh(os.path.join(os.path.dirname(scene("membrane_3d")), "..", "geo", "box.geo"))
+    by_expression = cdyn.scalar_wave(mesh, f="x + 2*y + 3*z").load(0.0)
+    by_callable = cdyn.scalar_wave(mesh, f=lambda x, y, z, t: x + 2 * y + 3 * z).load(0.0)
+    assert np.abs(by_callable - by_expression).max() <= 1e-15 * np.abs(by_expression).max()
+    with pytest.raises(cdyn.InputError, match=r"^f: a callable f\(x, y, t\) cannot depend on z"):
+        cdyn.scalar_wave(mesh, f=lambda x, y, t: x).load(0.0)
 
 
 def test_the_petsc_back_end_is_the_command_lines():
