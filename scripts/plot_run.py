@@ -7,8 +7,8 @@ Writes RUN_DIR/plots/:
   energy.png   E_kin, E_pot and E_total = J against t (seed, Theorem 2), and below
                the drift (J - J0)/E_scale (summary.json's E_scale: |J0|, or for a run
                from rest the energy it exchanges), where conservation shows (or not);
-               with Rayleigh damping also the dissipated work W_d, and the drift of
-               J + W_d;
+               with Rayleigh damping also the dissipated work W_d, with friction the
+               friction work W_f, and the drift of J + W_d + W_f;
   probes.png   u@P and lambda@P against t for every probe P (when the scene has any);
   contact.png  the number of active constraints per step and, at the probes, the
                contact force -lambda@P (lambda <= 0 is the seed's multiplier);
@@ -16,7 +16,9 @@ Writes RUN_DIR/plots/:
                Gamma_C over time: a space-time image and the profiles at a few times,
                where the spurious oscillations of a standard mass show against the
                smooth pressure of the well-posed methods; limited to the time window
-               of the contact.
+               of the contact;
+  friction.png (runs with friction, from contact.csv) the tangential force, the slip and
+               the stick/slip status of every friction vertex along Gamma_C over time.
 The axes carry the scene's units (its `units` key, in summary.json); the legends sit
 outside the axes, where they cover no curve.  docs/outputs.md describes the columns.  `cdyn run` runs a copy of this file compiled
 into the binary (apps/CMakeLists.txt), so edits here take effect at the next build;
@@ -61,12 +63,13 @@ def title(summary):
 def unit(summary, quantity):
     """ " [unit]" of a quantity in the scene's units (summary.json "units": length, force,
     time), "" without them.  Plane-strain elasticity gives energies and forces per unit
-    thickness (N·mm/mm, N/mm); the scalar models' are the model's own (F·L, F)."""
+    thickness (N·mm/mm, N/mm), elasticity in space whole ones (N·mm, N); the scalar
+    models' are the model's own (F·L, F)."""
     u = summary.get("units")
     if not u:
         return ""
     L, F, T = u["length"], u["force"], u["time"]
-    per = "/" + L if summary.get("model") == "elasticity" else ""
+    per = "/" + L if summary.get("model") == "elasticity" and summary.get("dim", 2) == 2 else ""
     text = {"length": L, "time": T, "energy": F + "·" + L + per, "force": F + per, "pressure": F + "/" + L + "²",
             "velocity": L + "/" + T}[quantity]
     return " [" + text + "]"
@@ -83,14 +86,19 @@ def plot_energy(h, summary):
     top.plot(t, h["E_kin"], label="E_kin = ½VᵀCV")
     top.plot(t, h["E_pot"], label="E_pot = ½UᵀAU − LᵀU")
     top.plot(t, h["E_total"], "k", label="E_total = J")
-    # With Rayleigh damping the balance is J + W_d = J0: the dissipated work W_d
-    # (history.csv's `dissipated`) and J + W_d are drawn, and the drift is that of J + W_d.
-    W = h.get("dissipated", [0.0] * len(t))
-    balance = [e + w for e, w in zip(h["E_total"], W)]
-    name = "J + W_d" if "dissipated" in h else "J"
-    if "dissipated" in h:
-        top.plot(t, W, "k:", label="W_d, work of the damping")
-        top.plot(t, balance, "k--", label="J + W_d")
+    # With Rayleigh damping and friction the balance is J + W_d + W_f = J0: the works
+    # taken (history.csv's `dissipated`, `friction_work`) and the balance are drawn, and
+    # the drift is that of the balance.
+    works = [(key, symbol, text) for key, symbol, text in
+             (("dissipated", "W_d", "work of the damping"), ("friction_work", "W_f", "work of friction")) if key in h]
+    balance = list(h["E_total"])
+    name = "J"
+    for key, symbol, text in works:
+        top.plot(t, h[key], ":", label=f"{symbol}, {text}")
+        balance = [b + w for b, w in zip(balance, h[key])]
+        name += " + " + symbol
+    if works:
+        top.plot(t, balance, "k--", label=name)
     top.set_ylabel("energy" + unit(summary, "energy"))
     legend(top)
     top.set_title(title(summary))
@@ -150,24 +158,30 @@ def plot_contact(h, summary):
     return fig
 
 
-def read_contact(path):
-    """contact.csv as (times, s, pressure[time][vertex]), the vertices sorted by s."""
+def read_contact(path, columns=("pressure",)):
+    """contact.csv as (times, s, {column: values[time][vertex]}), the vertices in the
+    file's order (sorted by s); None when a column is missing."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    times, s, pressure = [], [], []
+    if rows and any(c not in rows[0] for c in columns):
+        return None
+    times, s, values = [], [], {c: [] for c in columns}
     for r in rows:
         t = float(r["t"])
         if not times or t != times[-1]:
             times.append(t)
-            pressure.append([])
+            for c in columns:
+                values[c].append([])
         if len(times) == 1:
             s.append(float(r["s"]))
-        pressure[-1].append(float(r["pressure"]))
-    return times, s, pressure
+        for c in columns:
+            values[c][-1].append(float(r[c]))
+    return times, s, values
 
 
 def plot_contact_pressure(contact_csv, summary):
-    times, s, pressure = read_contact(contact_csv)
+    times, s, values = read_contact(contact_csv)
+    pressure = values["pressure"]
     if not s or len(times) < 2:
         return None
     # Contact means a pressure above the QP's round-off (about 1e-11 of the peak): the
@@ -206,6 +220,32 @@ def plot_contact_pressure(contact_csv, summary):
     return fig
 
 
+def plot_friction(contact_csv, summary):
+    """The friction vertices' tangential force, slip and status against s and t."""
+    read = read_contact(contact_csv, ("tangential_force", "slip", "status"))
+    if read is None or not read[1] or len(read[0]) < 2:
+        return None
+    times, s, v = read
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    panels = [("tangential_force", "tangential force λ_T (along t; in space |λ_T|)" + unit(summary, "force"), "coolwarm"),
+              ("slip", "slip Uⁿ⁺¹_T − Uⁿ_T (along t; in space its length)" + unit(summary, "length"), "coolwarm")]
+    for ax, (column, label, cmap) in zip(axes, panels):
+        data = v[column]
+        bound = max(max(abs(x) for x in row) for row in data) or 1.0
+        image = ax.pcolormesh(s, times, data, shading="nearest", cmap=cmap, vmin=-bound, vmax=bound)
+        fig.colorbar(image, ax=ax, label=label)
+    # status: −1 no friction, 0 open, 1 stick, 2 slip (docs/outputs.md)
+    states = matplotlib.colors.ListedColormap(["lightgrey", "white", "tab:blue", "tab:red"])
+    image = axes[2].pcolormesh(s, times, v["status"], shading="nearest", cmap=states, vmin=-1.5, vmax=2.5)
+    bar = fig.colorbar(image, ax=axes[2], ticks=[-1, 0, 1, 2])
+    bar.ax.set_yticklabels(["no friction", "open", "stick", "slip"])
+    for ax in axes:
+        ax.set_xlabel("position along Γ_C s" + unit(summary, "length"))
+        ax.set_ylabel("t" + unit(summary, "time"))
+    axes[0].set_title(title(summary), fontsize=9)
+    return fig
+
+
 def figures(run_dir):
     """The figures of a run, by file name (tests/cli/check_plots.py looks at them)."""
     h = read_history(os.path.join(run_dir, "history.csv"))
@@ -220,6 +260,9 @@ def figures(run_dir):
         fig = plot_contact_pressure(contact_csv, summary)
         if fig is not None:
             yield "contact_pressure.png", fig
+        fig = plot_friction(contact_csv, summary)
+        if fig is not None:
+            yield "friction.png", fig
 
 
 def save(fig, path):

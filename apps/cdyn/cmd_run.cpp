@@ -97,7 +97,7 @@ void remove_previous_outputs(const std::filesystem::path& out, bool resuming) {
   std::filesystem::remove(out / "summary.json", ec);
   std::filesystem::remove(out / "history.csv", ec);
   std::filesystem::remove(out / "contact.csv", ec);
-  for (const char* png : {"energy.png", "probes.png", "contact.png", "contact_pressure.png"}) std::filesystem::remove(out / "plots" / png, ec);
+  for (const char* png : {"energy.png", "probes.png", "contact.png", "contact_pressure.png", "friction.png"}) std::filesystem::remove(out / "plots" / png, ec);
   if (resuming) return;
   remove_fields(out);
   std::filesystem::remove_all(checkpoint_dir(out), ec);

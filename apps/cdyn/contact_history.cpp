@@ -1,6 +1,8 @@
 // contact_history.cpp — contact.csv and the impact summary of an elasticity run.
 #include "contact_history.hpp"
 
+#include "cdyn/post/contact_force.hpp"
+
 namespace cdyn::app {
 
 ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file,
@@ -12,7 +14,10 @@ ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::pat
     friction_of_[problem_.contact_nodes[problem_.friction[k].node].vertex] = static_cast<int>(k);
   if (csv_.resumed()) return;
   csv_.rows() << (mesh_.dim == 3 ? "step,t,vertex,x,y,z,s,gap,force,pressure" : "step,t,vertex,x,y,s,gap,force,pressure")
-              << (friction_ ? ",tangential_force,slip,status\n" : "\n");
+              << (!friction_         ? "\n"
+                  : mesh_.dim == 3 ? ",tangential_force,slip,status,tangential_force_x,tangential_force_y,"
+                                     "tangential_force_z,slip_x,slip_y,slip_z\n"
+                                   : ",tangential_force,slip,status\n");
   csv_.end_rows();
 }
 
@@ -21,6 +26,9 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
   const double t = s.t;
   double total = 0.0;
   std::ostream& csv = csv_.rows();
+  // in space, the slip in x, y, z (p.global of the nodal-frame slip)
+  const Eigen::VectorXd slip_xy =
+      write && friction_ && mesh_.dim == 3 && s.slip.size() ? problem_.global(s.slip) : Eigen::VectorXd();
   for (const ContactPressure::Vertex& c : contact_.vertices()) {
     const double force = contact_.normal_force(reaction_xy, c);
     total += force;
@@ -32,13 +40,20 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
         << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0);
     if (friction_) {
       const int k = friction_of_[c.vertex];
+      const char* zeros = mesh_.dim == 3 ? ",0,0,0,0,0,0" : "";
       if (k < 0) {
-        csv << ",0,0,-1";
+        csv << ",0,0,-1" << zeros;
       } else if (s.slip.size() == 0) {  // before the first step
-        csv << ",0,0,0";
+        csv << ",0,0,0" << zeros;
       } else {
-        csv << "," << (s.reaction.size() ? tangential_force(problem_.friction[k], s.reaction) : 0.0) << ","
-            << s.slip[k] << "," << s.contact_status[k];
+        const FrictionNode& node = problem_.friction[k];
+        csv << "," << (s.reaction.size() ? tangential_magnitude(node, s.reaction) : 0.0) << ","
+            << tangential_magnitude(node, s.slip) << "," << s.contact_status[k];
+        if (mesh_.dim == 3) {
+          const TangentialVectors tv = tangential_vectors(problem_, reaction_xy, slip_xy, k);
+          csv << "," << tv.force.x << "," << tv.force.y << "," << tv.force.z << "," << tv.slip.x << "," << tv.slip.y
+              << "," << tv.slip.z;
+        }
       }
     }
     csv << "\n";

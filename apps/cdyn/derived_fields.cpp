@@ -1,6 +1,7 @@
 // derived_fields.cpp — σ, ε, von Mises, contact pressure and regions as VTU arrays.
 #include "derived_fields.hpp"
 
+#include "cdyn/post/contact_force.hpp"
 #include "cdyn/post/stress.hpp"
 
 namespace cdyn::app {
@@ -49,16 +50,28 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
   }
   const ConstrainedProblem& p = sim_.problem;
   if (!p.friction.empty()) {
-    FieldArray force{"tangential_force", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
-    FieldArray slip{"slip", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
+    // in the plane λ_T and the slip along t (signed); in space their vectors in x, y, z
+    const int d = mesh.dim == 3 ? 3 : 1;
+    FieldArray force{"tangential_force", d, std::vector<double>(d * mesh.n_vertices(), 0.0)};
+    FieldArray slip{"slip", d, std::vector<double>(d * mesh.n_vertices(), 0.0)};
     FieldArray status{"contact_status", 1, std::vector<double>(mesh.n_vertices(), -1.0)};
+    const bool stepped = state && state->slip.size() > 0;  // (not before the first step)
+    const Eigen::VectorXd slip_xy = stepped && d == 3 ? p.global(state->slip) : Eigen::VectorXd();
     for (std::size_t k = 0; k < p.friction.size(); ++k) {
       const int v = p.contact_nodes[p.friction[k].node].vertex;
       status.values[v] = 0.0;
-      if (!state || state->slip.size() == 0) continue;  // before the first step
-      force.values[v] = tangential_force(p.friction[k], state->reaction);
-      slip.values[v] = state->slip[k];
+      if (!stepped) continue;
       status.values[v] = state->contact_status[k];
+      if (d == 1) {
+        force.values[v] = tangential_magnitude(p.friction[k], state->reaction);
+        slip.values[v] = tangential_magnitude(p.friction[k], state->slip);
+        continue;
+      }
+      const TangentialVectors tv = tangential_vectors(p, reaction_xy, slip_xy, static_cast<int>(k));
+      for (int i = 0; i < 3; ++i) {
+        force.values[3 * v + i] = i == 0 ? tv.force.x : i == 1 ? tv.force.y : tv.force.z;
+        slip.values[3 * v + i] = i == 0 ? tv.slip.x : i == 1 ? tv.slip.y : tv.slip.z;
+      }
     }
     for (FieldArray* a : {&force, &slip, &status}) out.point.push_back(std::move(*a));
   }

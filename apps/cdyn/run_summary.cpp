@@ -18,6 +18,7 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   nlohmann::ordered_json j;
   j["scene"] = sim.scene_name;
   j["model"] = sim.model;
+  j["dim"] = sim.mesh->dim;
   j["pair"] = sim.pair;
   j["scheme"] = sim.scheme_name;
   j["full_steps"] = to_string(sim.scheme->full_steps());

@@ -12,6 +12,9 @@ the same file) and looked at:
 - the Hertz run starts at rest: its drift is drawn against E_scale, not |J0| = 0;
 - contact_pressure.png shows the time window of the contact, not the whole run: the
   disk touches the plane for t in [0.5, 6.5] ms of its 10 ms;
+- with friction, friction.png shows the tangential force, the slip and the status of
+  each vertex over time, and energy.png the friction work W_f and the balance J + W_f;
+  in space the forces and energies are whole ones ([N], [N·m]), not per thickness;
 - work_precision.png draws the refinements of a method (mesh.file, mesh.n, time.dt)
   along one curve: a study over two meshes and two schemes has two curves, not four.
 """
@@ -93,6 +96,26 @@ check(t0 < impact["t_first_contact"] and impact["t_last_contact"] < t1 < 0.8 * s
       f"[{impact['t_first_contact']:.4g}, {impact['t_last_contact']:.4g}] of T = {s['T']:.4g}")
 for name, fig in figures.items():
     legends_outside("disk " + name, fig)
+
+out, s = run("incline_block.toml", "plots_friction")
+figures = dict(plot_run.figures(out))
+check("friction.png" in figures, "friction.png is drawn for a run with friction")
+bars = [a.get_ylabel() for a in figures["friction.png"].axes[3:]]
+check(bars[0].startswith("tangential force") and bars[0].endswith("[N/m]") and bars[1].startswith("slip")
+      and bars[1].endswith("[m]"), f"friction.png: colour bars {bars}")
+status = figures["friction.png"].axes[5]
+check([t.get_text() for t in status.get_yticklabels()] == ["no friction", "open", "stick", "slip"],
+      "friction.png: the status's colours are named")
+labels = figures["energy.png"].axes[0].get_legend_handles_labels()[1]
+check("W_f, work of friction" in labels and "J + W_f" in labels and
+      figures["energy.png"].axes[1].get_ylabel() == "(J + W_f − J0)/E_scale", f"energy.png with friction: {labels}")
+for name, fig in figures.items():
+    legends_outside("friction " + name, fig)
+out, s = run("incline_block_3d.toml", "plots_friction_3d")
+figures = dict(plot_run.figures(out))
+check(figures["energy.png"].axes[0].get_ylabel() == "energy [N·m]" and
+      figures["friction.png"].axes[3].get_ylabel().endswith("[N]"),
+      f"in space, whole energies and forces: '{figures['energy.png'].axes[0].get_ylabel()}'")
 
 # A study's table, written by hand: two meshes (files) for each of two schemes.
 study = os.path.join(work, "plots_study")

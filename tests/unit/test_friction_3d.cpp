@@ -124,11 +124,10 @@ TEST(Friction3D, PlateOnAnInclinedPlane) {
   {  // tan 20° = 0.36 < μ = 0.7: sticks, not a single vertex slips
     const auto st = run(build_elastic_contact(mesh, incline(mesh, 20.0 * M_PI / 180.0, kPhi, FrictionLaw::Coulomb, 0.7)),
                         "pdas", 60);
-    for (std::size_t k = 1; k < st.size(); ++k)
-      for (int i = 0; i < st[k].slip.size(); ++i) {
-        EXPECT_EQ(st[k].slip[i], 0.0) << "step " << k;
-        EXPECT_EQ(st[k].status[i], 1) << "step " << k;
-      }
+    for (std::size_t k = 1; k < st.size(); ++k) {
+      for (int i = 0; i < st[k].slip.size(); ++i) EXPECT_EQ(st[k].slip[i], 0.0) << "step " << k;
+      for (std::size_t i = 0; i < st[k].status.size(); ++i) EXPECT_EQ(st[k].status[i], 1) << "step " << k;
+    }
   }
   {  // tan 40° = 0.84 > μ = 0.5: slides downhill
     const double mu = 0.5, a = kG * (std::sin(kTheta) - mu * std::cos(kTheta));
@@ -148,7 +147,7 @@ TEST(Friction3D, PlateOnAnInclinedPlane) {
     // downhill direction) — a mechanical effect, four orders below the friction force
     EXPECT_LE(along, 1e-3 * kMass * a);
     EXPECT_LE(across, 1e-4 * kMass * a);
-    for (int i = 0; i < st.back().slip.size(); ++i) EXPECT_EQ(st.back().status[i], 2);
+    for (int status : st.back().status) EXPECT_EQ(status, 2);
   }
 }
 

@@ -33,4 +33,14 @@ bool is_constrained_vertex(const ConstrainedProblem& p, int vertex);
 // to round-off (~1e-14), so λ ≤ 0 holds to that.
 Point vertex_multiplier(const ConstrainedProblem& p, const Eigen::VectorXd& reaction_xy, int vertex);
 
+// Friction node k's tangential force λ_T (the reaction less its part along the node's
+// normal n) and slip (State::slip, whose normal part is 0) as vectors in x, y, z, from
+// reaction_xy and slip_xy = p.global(State::slip); zero before the first step (empty
+// vectors).  Their lengths are tangential_magnitude's in space (problems/friction.hpp).
+struct TangentialVectors {
+  Point force, slip;
+};
+TangentialVectors tangential_vectors(const ConstrainedProblem& p, const Eigen::VectorXd& reaction_xy,
+                                     const Eigen::VectorXd& slip_xy, int k);
+
 }  // namespace cdyn

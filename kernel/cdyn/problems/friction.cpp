@@ -23,10 +23,10 @@ std::string to_string(FrictionLaw law) {
   return "?";
 }
 
-double tangential_force(const FrictionNode& node, const Eigen::VectorXd& reaction) {
-  if (node.tangential.size() == 1) return reaction[node.tangential[0]];
+double tangential_magnitude(const FrictionNode& node, const Eigen::VectorXd& v) {
+  if (node.tangential.size() == 1) return v[node.tangential[0]];
   double sum = 0.0;
-  for (int t : node.tangential) sum += reaction[t] * reaction[t];
+  for (int t : node.tangential) sum += v[t] * v[t];
   return std::sqrt(sum);
 }
 

@@ -51,9 +51,9 @@ struct FrictionNode {
   double threshold = 0.0;        // Tresca: s_a = ∫_{Γ_C} s φ_a
 };
 
-// The tangential force λ_T of a friction node from the reaction λ = S X − r: in the
-// plane the signed reaction on its tangential unknown, in space its length |λ_T| in the
-// tangent plane.
-double tangential_force(const FrictionNode& node, const Eigen::VectorXd& reaction);
+// The tangential part of v (a vector on the free unknowns: the reaction λ = S X − r,
+// which gives the friction force λ_T, or State::slip) at a friction node: in the plane
+// the signed value on its tangential unknown, in space its length in the tangent plane.
+double tangential_magnitude(const FrictionNode& node, const Eigen::VectorXd& v);
 
 }  // namespace cdyn

@@ -197,11 +197,12 @@ void StepQPScheme::solve_with_friction(State& s, StepStats& stats) {
   stats.friction_work = slip_factor_ * friction_work(friction_, X, friction_last_.threshold);
   const int m = static_cast<int>(friction_.contacts.size());
   s.contact_status.resize(m);
-  s.slip.resize(m);
-  for (int k = 0; k < m; ++k) {
+  s.slip = Eigen::VectorXd::Zero(p_.n_free());
+  for (int k = 0; k < m; ++k) {  // (friction_.contacts[k] is p_.friction[k] in the QP's numbering)
     const FrictionContact& c = friction_.contacts[k];
     s.contact_status[k] = static_cast<int>(friction_last_.status[k]);
-    s.slip[k] = slip_factor_ * tangential_slip(c, X, friction_.reference);
+    for (std::size_t j = 0; j < c.tangential.size(); ++j)
+      s.slip[p_.friction[k].tangential[j]] = slip_factor_ * (X[c.tangential[j]] - friction_.reference[c.tangential[j]]);
   }
 }
 

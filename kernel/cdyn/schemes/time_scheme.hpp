@@ -25,12 +25,12 @@ struct State {
   double t = 0.0;
   Eigen::VectorXd U, V;
   Eigen::VectorXd reaction;  // Gᵀλ of the last step on the free dofs (λ the seed's multiplier)
-  // With friction (ConstrainedProblem::friction), per friction node, of the last step:
-  // its status (qp/friction_qp.hpp: 0 open, 1 stick, 2 slip) and its slip, the
-  // increment U^{n+1}_T − Uⁿ_T of its tangential unknown in the plane (signed), its
-  // length in space (tangential_slip).  The tangential force is `reaction` on the
-  // tangential unknowns (problems/friction.hpp, tangential_force).  Empty without
-  // friction or before a step.
+  // With friction (ConstrainedProblem::friction), of the last step: the status of each
+  // friction node (qp/friction_qp.hpp: 0 open, 1 stick, 2 slip), and the slip on the
+  // free unknowns, U^{n+1}_T − Uⁿ_T on the friction nodes' tangential unknowns and 0
+  // elsewhere (in the nodal frames, as `reaction`: p.global() gives it in x, y, z).  The
+  // tangential force is `reaction` on the same unknowns (problems/friction.hpp,
+  // tangential_magnitude).  Empty without friction or before a step.
   std::vector<int> contact_status;
   Eigen::VectorXd slip;
 };
