@@ -47,8 +47,10 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
         csv << ",0,0,0" << zeros;
       } else {
         const FrictionNode& node = problem_.friction[k];
-        csv << "," << (s.reaction.size() ? tangential_magnitude(node, s.reaction) : 0.0) << ","
-            << tangential_magnitude(node, s.slip) << "," << s.contact_status[k];
+        // (in space a length: |·| also where a roller leaves one tangential unknown)
+        const auto length = [&](double x) { return mesh_.dim == 3 ? std::abs(x) : x; };
+        csv << "," << (s.reaction.size() ? length(tangential_magnitude(node, s.reaction)) : 0.0) << ","
+            << length(tangential_magnitude(node, s.slip)) << "," << s.contact_status[k];
         if (mesh_.dim == 3) {
           const TangentialVectors tv = tangential_vectors(problem_, reaction_xy, slip_xy, k);
           csv << "," << tv.force.x << "," << tv.force.y << "," << tv.force.z << "," << tv.slip.x << "," << tv.slip.y

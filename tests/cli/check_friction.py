@@ -129,6 +129,23 @@ check(length <= 1e-12, "in space, contact.csv's vectors have the lengths tangent
 check(downhill <= 1e-3, "in space, the slip vector points down the slope (from step 50)")
 check(against <= 1e-6, "in space, the friction force vector opposes the slip (Coulomb's maximum dissipation)")
 
+# In space on rollers: the plate sliding along x (φ = 0) with u_y fixed on its side faces
+# (a symmetry plane's condition); the vertices where the sides meet the base keep one
+# free tangential direction, x, and must have friction there.  (Measured: before they
+# had none, 32 of 56 vertices with friction, and the plate slid 29 % faster than
+# g (sin θ − μ cos θ), exit 0; now 2.9e-5.)
+g3 = "physics.gravity=[4.905, 0, -8.495709211]"  # 9.81 (sin 30°, 0, −cos 30°)
+s4, rows4, contact4 = run(cdyn, os.path.join(src, "data/scenes/incline_block_3d.toml"), os.path.join(work, "rollers"),
+                          every, g3, 'dirichlet.parts=["sides", "left"]', 'dirichlet.components=["y"]')
+T4 = rows4[-1]["t"]
+dev4 = max(abs(r["px"] - m3 * a * r["t"]) for r in rows4 if r["step"] >= 10) / (m3 * a * T4)
+vertices = {c["vertex"] for c in contact4}
+with_friction = {c["vertex"] for c in contact4 if c["status"] != -1}
+print(f"on rollers: {len(with_friction)} of {len(vertices)} contact vertices with friction, "
+      f"max |px - m a t|/(m a T) = {dev4:.2e} from step 10")
+check(with_friction == vertices, "in space, a roller vertex of the base has friction along its free direction")
+check(dev4 <= 1e-3, "in space, on rollers the plate slides along x with a = g (sin θ − μ cos θ)")
+
 if failures:
     sys.exit("check_friction: FAILED: " + "; ".join(failures))
 print("check_friction: ok")

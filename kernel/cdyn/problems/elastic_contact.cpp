@@ -51,11 +51,13 @@ struct ContactSet {
   std::vector<Bound> bounds;
   std::vector<ConstrainedProblem::ContactNode> nodes; // every contact vertex
   std::vector<int> contact_dofs;                      // every free component of every contact vertex
-  // The rotated vertices whose components are all free: the node, its normal unknown
-  // and its tangential ones (where friction can act).
+  // The rotated vertices with a free tangential direction: the node, its normal unknown
+  // and its tangential ones (where friction can act); normal_share = |m| ≤ 1, the part
+  // of the unit normal on the free components (1 but on a roller: docs/friction.md).
   struct Frame {
     int node = -1, normal = -1;
     std::vector<int> tangential;
+    double normal_share = 1.0;
   };
   std::vector<Frame> frames;
 };
@@ -82,7 +84,10 @@ void constrain_vertex(int v, int node, const Point& n, const std::array<int, 3>&
   }
   const bool all_free = static_cast<int>(free.size()) == dim;
   if (along.empty()) return;  // the constraint does not involve a free unknown
-  if (along.size() == 1 && !(all_free && rotate_always)) {
+  // (a roller in space, two free components, with friction: rotated below, so that its
+  // free tangential direction gets a frame)
+  const bool roller_frame = rotate_always && dim == 3 && free.size() == 2;
+  if (along.size() == 1 && !(all_free && rotate_always) && !roller_frame) {
     // n_k u_k ≥ g − Σ_fixed n_j u_D,j bounds u_k (n = ±e_k when every component is free).
     const int k = along[0];
     if (all_free)
@@ -103,12 +108,15 @@ void constrain_vertex(int v, int node, const Point& n, const std::array<int, 3>&
     s.frames.push_back({node, i[0], dim == 3 ? std::vector<int>{i[1], i[2]} : std::vector<int>{i[1]}});
     return;
   }
-  // Two free components of three, n with a part along both: rotate them to m/|m| and
-  // bound (m/|m|)·u_F ≥ (g + offset)/|m|.
+  // Two free components of three, n with a part m along them: rotate them to m/|m| and
+  // bound (m/|m|)·u_F ≥ (g + offset)/|m|.  The second rotated unknown, along
+  // (−m_b, m_a)/|m|, is tangent to the obstacle (n·t = 0): friction acts there, against
+  // the normal force λ_N = (reaction on the first)/|m|.
   const int a = free[0], b = free[1];
   const double m = std::hypot(nk[a], nk[b]);
   s.rotation.nodes.push_back({i[a], i[b], nk[a] / m, nk[b] / m});
   s.bounds.push_back({i[a], node, 1.0 / m, offset / m, true});
+  if (roller_frame) s.frames.push_back({node, i[a], {i[b]}, m});
 }
 
 ContactSet contact_set(const Mesh& mesh, const FESpace& W, const DirichletLift& bc, const Eigen::VectorXd& UD,
@@ -154,8 +162,9 @@ void write_bounds(const Mesh& mesh, const std::vector<RigidObstacle>& obstacles,
   }
 }
 
-// The friction nodes of the contact vertices whose obstacle has friction and whose
-// components are all free (problems/friction.hpp): μ(a), or s_a = ∫_{Γ_C} s φ_a, the
+// The friction nodes of the contact vertices whose obstacle has friction and which have
+// a free tangential direction (the frames: every component free, or a roller in space;
+// problems/friction.hpp): μ(a) (over |m| on a roller), or s_a = ∫_{Γ_C} s φ_a, the
 // threshold integrated over the obstacle's contact parts against the vertex's basis
 // function (assemble_boundary_load with the traction (s, 0)).
 std::vector<FrictionNode> friction_nodes(const Mesh& mesh, const FESpace& W, const std::vector<RigidObstacle>& obstacles,
@@ -172,6 +181,7 @@ std::vector<FrictionNode> friction_nodes(const Mesh& mesh, const FESpace& W, con
       f.mu = spec.mu(a, 0.0);
       if (!(f.mu >= 0.0) || !std::isfinite(f.mu))
         throw InputError("friction_mu", "the friction coefficient must be finite and ≥ 0 (" + obstacles[c.obstacle].name + ")");
+      f.mu /= fr.normal_share;  // |λ_T| ≤ μ λ_N with λ_N = (reaction on the normal unknown)/|m|
     } else {
       const double s = spec.threshold(a, 0.0);
       if (!(s >= 0.0)) throw InputError("friction_threshold", "the Tresca threshold must be ≥ 0 (" + obstacles[c.obstacle].name + ")");
