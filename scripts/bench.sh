@@ -26,6 +26,8 @@ CDYN_BENCH_N=80 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=t
 echo "== (b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, 300 steps (n = 160: 270 steps)"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80 --steps 300
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 160 --steps 270
+echo "== (b') the same in resting contact (started on the obstacle), n = 40, 80, 100 steps (n = 160: 5.5 more minutes, --n 160)"
+$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 100 --resting
 echo "== (c) scaling n = 40 ... 640: the first 20 steps (free fall), then steps 1-270 (with the impact)"
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling"
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_contact" --steps 270
