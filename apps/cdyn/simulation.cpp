@@ -265,8 +265,6 @@ void check_backend(const Simulation& sim) {
   if (!sparse_mass(*sim.problem.mass))
     throw InputError("solver.backend: the petsc back end needs an explicit step matrix; with " + sim.pair +
                      " the step is in saddle form (H^h continuous): use solver.backend = \"native\"");
-  if (!sim.problem.friction.empty())
-    throw InputError("solver.backend: the petsc back end has no friction solver; use solver.backend = \"native\"");
 }
 
 Simulation make_simulation(const SceneSpec& spec) {
