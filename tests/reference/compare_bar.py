@@ -11,10 +11,11 @@ consistent mass violates condition (12), and from the first impact on the two ru
 1e-13 difference grows about 10× every 8 steps, to O(1) by step 330
 (docs/verification.md).
 """
-import csv
 import os
 import subprocess
 import sys
+
+from reference_histories import histories
 
 cdyn, script, scene, work, scheme, steps = sys.argv[1:7]
 os.makedirs(work, exist_ok=True)
@@ -25,12 +26,7 @@ out = os.path.join(work, f"cdyn_bar_{scheme}")
 subprocess.run([cdyn, "run", scene, "--out", out, "--quiet", "--set", "method.mass=consistent", "--set",
                 f"time.scheme={scheme}", "--set", f"time.T={int(steps) * 0.0125}", "--set", "solver.tol=1e-13",
                 "--set", "output.fields=false", "--set", "output.plots=false"], check=True)
-with open(ref) as f:
-    b = list(csv.DictReader(f))
-with open(os.path.join(out, "history.csv")) as f:
-    a = list(csv.DictReader(f))
-if len(a) != len(b):
-    sys.exit(f"FAIL: {len(a)} cdyn rows against {len(b)} GetFEM rows")
+a, b = histories(ref, out, "GetFEM")
 J0 = float(b[0]["E_total"])
 dJ = max(abs(float(x["E_total"]) - float(y["E_total"])) for x, y in zip(a, b)) / J0
 du = max(abs(float(x["u@contact"]) - float(y["u_contact"])) for x, y in zip(a, b))

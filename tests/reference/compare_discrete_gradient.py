@@ -13,10 +13,11 @@ solve the same discrete equations to different tolerances (cdyn: QPs to 1e-13, t
 step's energy error below 1e-12 of its terms; the reference: dense solves and β to
 1e-14), so they agree to what those leave: measured in docs/verification.md.
 """
-import csv
 import os
 import subprocess
 import sys
+
+from reference_histories import histories
 
 cdyn, script, scene, work, steps = sys.argv[1:6]
 pair = sys.argv[6] if len(sys.argv) > 6 else "P1+/P0"
@@ -30,12 +31,7 @@ subprocess.run([cdyn, "run", scene, "--out", out, "--quiet", "--set", f"method.p
                 "time.scheme=discrete_gradient", "--set",
                 f"time.T={int(steps) * 0.0125}", "--set", "solver.tol=1e-13", "--set", "output.fields=false",
                 "--set", "output.plots=false"], check=True)
-with open(ref) as f:
-    b = list(csv.DictReader(f))
-with open(os.path.join(out, "history.csv")) as f:
-    a = list(csv.DictReader(f))
-if len(a) != len(b):
-    sys.exit(f"FAIL: {len(a)} cdyn rows against {len(b)} reference rows")
+a, b = histories(ref, out, "reference")
 J0 = float(b[0]["E_total"])
 dJ = max(abs(float(x["E_total"]) - float(y["E_total"])) for x, y in zip(a, b)) / J0
 du = max(abs(float(x["u@contact"]) - float(y["u_contact"])) for x, y in zip(a, b))

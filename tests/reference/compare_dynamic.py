@@ -18,11 +18,12 @@ potential energy it reports is that of the reconstructed state).
 
     compare_dynamic.py CDYN FREEFEM_SCRIPT WORKDIR PAIR SCHEME STEPS
 """
-import csv
 import os
 import shutil
 import subprocess
 import sys
+
+from reference_histories import histories
 
 
 def main():
@@ -42,12 +43,7 @@ def main():
                     "--set", f"time.scheme={scheme}", "--set", "time.dt=0.001", "--set", f"time.T={int(steps) * 0.001}",
                     "--set", "output.fields=false", "--set", "output.plots=false", "--set", "time.reconstruct=false"],
                    check=True)
-    with open(ff_csv) as f:
-        ff = list(csv.DictReader(f))
-    with open(os.path.join(out, "history.csv")) as f:
-        cd = list(csv.DictReader(f))
-    if len(ff) != len(cd):
-        sys.exit(f"FAIL: {len(ff)} FreeFEM rows against {len(cd)} cdyn rows")
+    cd, ff = histories(ff_csv, out, "FreeFEM")
     J0 = abs(float(ff[0]["E_total"]))
     worst = {"E_total": 0.0, "E_kin": 0.0, "E_pot": 0.0}
     du = 0.0

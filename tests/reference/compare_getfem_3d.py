@@ -17,10 +17,11 @@ up to 97 (membrane) and 25 (cube) active constraints, |ΔJ|/J0 ≤ 4.7e-12 and |
 6.4e-13, the active counts equal at every step.  The tolerance is 1e-10.  Midpoint runs
 with time.reconstruct = false: the reference extrapolates U^{n+1} = 2U^{n+½} − Uⁿ.
 """
-import csv
 import os
 import subprocess
 import sys
+
+from reference_histories import histories
 
 CASES = {"membrane": ("membrane_3d.toml", 8, 0.002, 400, []),
          "elasticity": ("cube_3d.toml", 4, 0.06, 125, ["--set", "obstacle.point=[0, 0, -0.125]"])}
@@ -37,12 +38,7 @@ subprocess.run([cdyn, "run", os.path.join(scenes, scene), "--out", out, "--quiet
                 "--set", f"method.pair={pair}", "--set", f"time.scheme={scheme}", "--set", f"time.dt={dt}",
                 "--set", f"time.T={steps * dt}", "--set", "time.reconstruct=false", "--set", "solver.tol=1e-13",
                 "--set", "output.fields=false", "--set", "output.plots=false", *extra], check=True)
-with open(ref) as f:
-    b = list(csv.DictReader(f))
-with open(os.path.join(out, "history.csv")) as f:
-    a = list(csv.DictReader(f))
-if len(a) != len(b):
-    sys.exit(f"FAIL: {len(a)} cdyn rows against {len(b)} GetFEM rows")
+a, b = histories(ref, out, "GetFEM")
 J0 = abs(float(b[0]["E_total"]))
 dJ = max(abs(float(x[k]) - float(y[k])) for x, y in zip(a, b) for k in ("E_total", "E_kin", "E_pot")) / J0
 probes = [k for k in b[0] if "@" in k]
