@@ -24,6 +24,10 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   j["full_steps"] = to_string(sim.scheme->full_steps());
   j["solver"] = sim.solver_name;
   j["solver_tol"] = sim.tol;
+  // how pdas solved its reduced systems (solver.linear, "auto" resolved)
+  j["solver_linear"] = sim.spec.solver.name != "pdas" || sim.spec.solver.backend != "native" ? "-"
+                       : sim.spec.solver.options.pdas_cg_only                                 ? "cg"
+                                                                                              : "factor";
   // the back end and its processes (docs/distributed.md): rank 0 and the ranks serving it
   j["backend"] = sim.spec.solver.backend;
   j["ranks"] = petsc::size();

@@ -399,11 +399,12 @@ void read_time_and_solver(const Scene& s, SceneSpec& spec) {
   // solver.linear: how pdas solves its reduced systems, a kept Cholesky factor (with
   // CG while the active set moves) or CG alone (docs/performance.md, 3D)
   const std::string linear = s.string("solver.linear", "factor");
-  if (linear != "factor" && linear != "cg")
-    throw InputError("solver.linear: expected \"factor\" or \"cg\" (got '" + linear + "')");
-  if (linear == "cg" && v.name != "pdas")
+  if (linear != "factor" && linear != "cg" && linear != "auto")
+    throw InputError("solver.linear: expected \"factor\", \"cg\" or \"auto\" (got '" + linear + "')");
+  if (linear != "factor" && v.name != "pdas")
     throw InputError("solver.linear: the CG path is pdas's (solver.name = " + v.name + ")");
   v.options.pdas_cg_only = linear == "cg";
+  v.linear_auto = linear == "auto";
   read_backend(s, v);
   v.threads = s.integer("solver.threads", 0);
   if (v.threads < 0)

@@ -117,6 +117,9 @@ struct SceneSpec {
     // on the ranks of mpirun, qp/petsc/petsc_step_solver.hpp); solver.pc: the
     // preconditioner of its Krylov solves (empty: the solver's default)
     std::string backend = "native", pc;
+    // solver.linear = "auto": the CG path or the factor chosen per problem at set-up
+    // (simulation.cpp, choose_linear_solves)
+    bool linear_auto = false;
   } solver;
 
   // `units`: the names of the units of length, force and time the scene's numbers are

@@ -267,6 +267,25 @@ void check_backend(const Simulation& sim) {
                      " the step is in saddle form (H^h continuous): use solver.backend = \"native\"");
 }
 
+// solver.linear = "auto": the CG path where it was measured to beat the factor —
+// tetrahedral meshes from about 10⁴ step-QP unknowns (P1+'s bubbles, eliminated by the
+// scheme, not counted), where the factor's fill makes every row update and
+// refactorization dear (docs/performance.md, "Three dimensions": CG 2–9× faster in
+// contact from there) — if the step matrix is explicit and the scheme is not the
+// energy-exact one (its correction needs solves below the QP tolerance); the factor
+// otherwise (2D, small 3D problems, saddle forms).
+namespace {
+bool cg_pays(const Simulation& sim) {
+  const SceneSpec& s = sim.spec;
+  const ConstrainedProblem& p = sim.problem;
+  const int bubbles = p.W->element() == Element::P1Bubble && s.time.parameters.condense
+                          ? p.W->mesh().n_cells() * p.W->components()
+                          : 0;
+  return sim.mesh->dim == 3 && p.n_free() - bubbles >= 10000 && sparse_mass(*p.mass) && s.solver.backend == "native" &&
+         s.time.scheme != "discrete_gradient";
+}
+}  // namespace
+
 Simulation make_simulation(const SceneSpec& spec) {
   Simulation sim;
   sim.spec = spec;
@@ -290,6 +309,7 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.n_steps = s.time.n_steps;
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
+  if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_pays(sim);
   // (the CG path's solves stop at the QP tolerance, above what the energy-exact
   // scheme's correction needs: auto takes the midpoint with its full-step
   // reconstruction then, docs/performance.md)

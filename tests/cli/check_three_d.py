@@ -95,5 +95,20 @@ dE = abs(sc["E_final"] - sf["E_final"]) / sf["E0"]
 dF = max(abs(a["contact_force"] - b["contact_force"]) for a, b in zip(hf, hc)) / max(r["contact_force"] for r in hf)
 check(sf["impact"]["contact"] and dE <= 1e-8 and dF <= 1e-8,
       f"cube: the CG path gives the factor's J(T) to {dE:.1e} and contact force to {dF:.1e}")
+check(sf["solver_linear"] == "factor" and sc["solver_linear"] == "cg", "cube: summary.json's solver_linear")
+
+# solver.linear = "auto": CG from 10⁴ free unknowns in space with an explicit step matrix,
+# unless the scheme is the energy-exact one; the factor in the plane and below.
+# (the cube's P1+/P0 step QP has 3 × (n + 1)³ unknowns once its bubbles are eliminated)
+AUTO = [("cube n = 8 (2 187)", cube, ["mesh.n=8"], "factor"),
+        ("cube n = 16 (14 739)", cube, ["mesh.n=16"], "cg"),
+        ("cube n = 16, P1/P1", cube, ["mesh.n=16", "method.pair=P1/P1", "time.scheme=backward_euler"], "cg"),
+        ("cube n = 16, discrete_gradient", cube, ["mesh.n=16", "time.scheme=discrete_gradient"], "factor"),
+        ("cube n = 8, P2/P1 (14 739, saddle form)", cube, ["mesh.n=8", "method.pair=P2/P1"], "factor"),
+        ("the membrane n = 160 (76 481, triangles)", os.path.join(scenes, "membrane.toml"), ["mesh.n=160"], "factor")]
+for what, scene, sets, expected in AUTO:
+    s, _, _ = run(cdyn, scene, os.path.join(work, "auto"), "solver.linear=auto", "time.dt=0.01", "time.T=0.01",
+                  "output.wellposed=false", *sets)
+    check(s["solver_linear"] == expected, f"solver.linear = auto, {what}: {s['solver_linear']} (expected {expected})")
 
 sys.exit(1 if failures else 0)
