@@ -23,13 +23,14 @@
 // pair (X, β) with X the solution of the corrected QP and ΔH = 0.  β = 0 first: where
 // Ψ is quadratic on [qⁿ, q^{n+1}] (no switch of the active set) ΔH = 0 already and the
 // step is plain midpoint.  Otherwise β₁ = ΔH₀/|Δq|²_C (Gonzalez's formula at β = 0) and
-// secant steps on ΔH(β).  The correction is applied lagged, 2β M (X_prev − Uⁿ) moved to
+// secant steps on ΔH(β).  The correction is applied lagged, 2β M (X_lag − Uⁿ) moved to
 // the right-hand side, so that every iteration solves the QP with the same matrix
 // S = 4Mc² + A — the one the solver has factorized — instead of a new S per β; the lag
 // contracts by |β|/(2c²) per iteration (measured on the membrane: |β| ≤ 460 against
-// 2c² = 2e6), and the iteration stops when ΔH is below energy_tol times the energy
-// size of its terms (its round-off floor) and the lag would move X by less than the QP
-// tolerance.
+// 2c² = 2e6), X_lag is the last X extrapolated to the new β (so that the lag's error is
+// second order in the β step and the secant sees ΔH(β) nearly exactly), and the
+// iteration stops when ΔH is below energy_tol times the energy size of its terms (its
+// round-off floor) and the lag would move X by less than the QP tolerance.
 //
 // When the correction asks for |β| ≥ c² (a large dt against a stiff switch: the seed's
 // membrane at n = 10, dt = 0.01 asks β = −4.8e4 against 2c² = 2e4, where the corrected
@@ -151,12 +152,14 @@ class DiscreteGradient final : public StepQPScheme {
     struct Iterate {
       double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0, dissipated = 0;
       Eigen::VectorXd X, U1, W1, reaction;
+      Eigen::VectorXd X_lag;  // the X of the lagged correction (empty: none)
     };
     auto iterate = [&](double beta, const Eigen::VectorXd* X_prev) {
       StepStats qp;
       Iterate it;
       it.beta = beta;
       it.X = solve(X_prev ? Eigen::VectorXd(r0 - 2 * beta * mass_times(*X_prev - s.U)) : r0, trial_state, qp);
+      if (X_prev) it.X_lag = *X_prev;
       stats.qp_iterations += qp.qp_iterations;
       stats.qp_seconds += qp.qp_seconds;
       stats.active = qp.active;
@@ -200,20 +203,27 @@ class DiscreteGradient final : public StepQPScheme {
     // itself to be below the tolerance fails when the step solves are inexact to their
     // tolerance — pdas's CG while the active set moves, or the CG path — whose noise in X
     // does not contract.)
-    auto settled = [&](const Iterate& it, const Iterate& prev) {
+    auto settled = [&](const Iterate& it) {
       const double scale = std::max(it.X.lpNorm<Eigen::Infinity>(), 1e-300);
-      return std::abs(it.beta) / (2 * c * c) * (it.X - prev.X).lpNorm<Eigen::Infinity>() <= tol_ * scale;
+      return it.X_lag.size() == 0 ||
+             std::abs(it.beta) / (2 * c * c) * (it.X - it.X_lag).lpNorm<Eigen::Infinity>() <= tol_ * scale;
     };
 
     Iterate a = iterate(0.0, nullptr);
     if (!small_energy(a)) {
       Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &a.X);
-      for (int k = 0; !(small_energy(b) && settled(b, a)); ++k) {
+      for (int k = 0; !(small_energy(b) && settled(b)); ++k) {
         // the lag contracts by |β|/(2c²): at |β| ≥ c² it no longer pays (or diverges)
         if (k >= kMaxIterations || !(std::abs(b.beta) < c * c)) return false;
         // the secant on ΔH(β) (β kept once ΔH is small: only the lag is left to settle)
         const double next = small_energy(b) ? b.beta : secant(a, b);
-        Iterate c_it = iterate(next, &b.X);
+        // The lag is taken at X extrapolated to the new β along the last two iterates,
+        // X_b + (β − β_b)(X_b − X_a)/(β_b − β_a): its error is then second order in the
+        // β step instead of first, and ΔH at the new iterate is nearly ΔH(β) itself, on
+        // which the secant converges superlinearly.
+        Eigen::VectorXd X_lag = b.X;
+        if (b.beta != a.beta) X_lag += ((next - b.beta) / (b.beta - a.beta)) * (b.X - a.X);
+        Iterate c_it = iterate(next, &X_lag);
         a = std::move(b);
         b = std::move(c_it);
       }
