@@ -77,7 +77,13 @@ Field to_field(const py::object& value, const std::string& name) {
     throw InputError(name, "expected a number, an expression (str) or a callable f(x, y, t) or f(x, y, z, t)");
   // The callable is kept (a reference) as long as the field: by the problem that holds it.
   py::function f = py::reinterpret_borrow<py::function>(value);
-  if (py::len(py::module_::import("inspect").attr("signature")(f).attr("parameters")) == 4)
+  // (a callable whose signature Python cannot tell, some builtins, is taken as f(x, y, t))
+  int parameters = 3;
+  try {
+    parameters = static_cast<int>(py::len(py::module_::import("inspect").attr("signature")(f).attr("parameters")));
+  } catch (const py::error_already_set&) {
+  }
+  if (parameters == 4)
     return Field([f](const Point& p, double t) { return f(p.x, p.y, p.z, t).cast<double>(); });
   // f(x, y, t) cannot see z: refused at the first point off the plane z = 0 (a 3D mesh)
   // rather than evaluated there as if z were 0.
