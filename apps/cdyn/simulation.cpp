@@ -310,6 +310,8 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
   if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_pays(sim);
+  // the full-step reconstruction's QP solved as the step's: by CG alone on that path
+  sim.spec.time.parameters.reconstruct_by_cg = s.solver.options.pdas_cg_only;
   // (the CG path's solves stop at the QP tolerance, above what the energy-exact
   // scheme's correction needs: auto takes the midpoint with its full-step
   // reconstruction then, docs/performance.md)

@@ -253,7 +253,7 @@ class DiscreteGradient final : public StepQPScheme {
 std::unique_ptr<TimeScheme> make_discrete_gradient(const ConstrainedProblem& p, StepSolver& solver, double dt,
                                                    const SchemeParameters& parameters) {
   if (!(parameters.energy_tol > 0)) throw InputError("energy_tol", "must be positive");
-  FullStepReconstruction full_step(p, parameters.tol);
+  FullStepReconstruction full_step(p, parameters.tol, false, parameters.reconstruct_by_cg);
   // The scheme is the Hamiltonian system in q: it needs the massless part to be
   // determined by (14) (the seed's condition (12)).  Without massless directions (Ker B =
   // {0}: P1/P1, P1/P0, consistent, lumped) the constrained unknowns carry inertia, the

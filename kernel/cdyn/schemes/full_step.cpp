@@ -25,7 +25,8 @@ std::vector<char> bounded(const ConstrainedProblem& p) {
 FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, double tol)
     : FullStepReconstruction(p, tol, false) {}
 
-FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers)
+FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers,
+                                               bool cg_only)
     : p_(p), tol_(tol) {
   QPOptions options;
   options.tol = tol;
@@ -63,6 +64,10 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   const int m = static_cast<int>(Z.cols());
   qp_.lower = Eigen::VectorXd::Constant(m, -std::numeric_limits<double>::infinity());
   qp_.upper = Eigen::VectorXd::Constant(m, std::numeric_limits<double>::infinity());
+  if (cg_only) {
+    options.pdas_cg_only = true;
+    solver_ = make_step_solver("pdas", options);
+  }
 }
 
 void FullStepReconstruction::prepare_multipliers() {

@@ -56,8 +56,10 @@ class FullStepReconstruction {
   // with mass: condition (12) fails in local form).
   enum class Method { None, LocalBasis, Multipliers };
   // `multipliers`: use the method of multipliers even where a local basis exists (to
-  // compare the two).
-  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers);
+  // compare the two).  `cg_only`: the local basis's QP solved by pdas's CG alone, no
+  // factor (the step's solver.linear = "cg": in 3D the factor of ZᵀAZ fills, 280 MB of
+  // a 1 GB run at 300k unknowns); the multipliers' saddle form keeps its LU.
+  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers, bool cg_only = false);
 
   Method method() const { return method_; }
   bool available() const { return method_ != Method::None; }

@@ -118,6 +118,8 @@ struct SchemeParameters {
   // every full-step state (schemes/full_step.hpp), to `tol` (kkt_residual).
   bool reconstruct = true;
   double tol = 1e-10;
+  // ... by pdas's CG alone, without a factor (set with the step's solver.linear = "cg")
+  bool reconstruct_by_cg = false;
   // discrete_gradient: the largest energy error of a step, relative to the size of the
   // terms of ΔH = ΔK + ΔΨ (½VᵀCV, |Ψ| and the kinetic change's two parts: the round-off
   // of ΔH is a few ε of them; docs/schemes.md, "The discrete gradient scheme").
