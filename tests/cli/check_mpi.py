@@ -10,7 +10,7 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     to 1e-9 of each column's largest value; summary.json says `backend` and `ranks`.
  2. TAO's TRON and SNESVI on two processes: the same.
  3. Errors: one line from rank 0 and exit status 2 — the native back end under mpirun
-    -n 2, a saddle-form pair, solver.pc on the native back end, solver.linear
+    -n 2, a saddle-form pair, friction with snesvi, solver.pc on the native back end, solver.linear
     on the petsc one; a step QP that does not converge on two ranks: one line, exit
     status 3, no rank left waiting.
 Only the standard library is used.
@@ -99,6 +99,8 @@ ERRORS = {
     "the native back end under mpirun -n 2": ("", [], "solver.backend"),
     "a saddle-form pair": ("", ["solver.backend=petsc", "method.pair=P2/P1"], "solver.backend"),
     "solver.pc on the native back end": ("", ["solver.pc=jacobi"], "solver.pc"),
+    "friction with snesvi": (os.path.join(src, "data/scenes/incline_block.toml"),
+                             ["solver.backend=petsc", "solver.name=snesvi"], "solver.name"),
     "solver.linear on the petsc back end": ("", ["solver.backend=petsc", "solver.linear=cg"], "solver.linear"),
 }
 for what, (scene, sets, key) in ERRORS.items():

@@ -22,11 +22,6 @@ double slip_norm(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen
 
 }  // namespace
 
-double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen::VectorXd& reference) {
-  if (c.tangential.size() == 1) return X[c.tangential[0]] - reference[c.tangential[0]];
-  return slip_norm(c, X, reference);
-}
-
 bool in_space(const FrictionConditions& f) {
   return std::any_of(f.contacts.begin(), f.contacts.end(), [](const FrictionContact& c) { return c.tangential.size() > 1; });
 }

@@ -72,10 +72,6 @@ struct FrictionResult {
   Eigen::VectorXd direction;
 };
 
-// The slip of contact c from X̂ to X: in the plane the signed increment of its tangential
-// unknown, in space the length |X_T − X̂_T| of the increment in its tangent plane.
-double tangential_slip(const FrictionContact& c, const Eigen::VectorXd& X, const Eigen::VectorXd& reference);
-
 // Whether a contact has two tangential unknowns (a problem in space).
 bool in_space(const FrictionConditions& f);
 
