@@ -26,9 +26,10 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
   const double t = s.t;
   double total = 0.0;
   std::ostream& csv = csv_.rows();
-  // in space, the slip in x, y, z (p.global of the nodal-frame slip)
-  const Eigen::VectorXd slip_xy =
-      write && friction_ && mesh_.dim == 3 && s.slip.size() ? problem_.global(s.slip) : Eigen::VectorXd();
+  // in space, the tangential force and the slip in x, y, z
+  const bool vectors = write && friction_ && mesh_.dim == 3;
+  const Eigen::VectorXd force_xy = vectors ? tangential_xy(problem_, s.reaction) : Eigen::VectorXd();
+  const Eigen::VectorXd slip_xy = vectors ? tangential_xy(problem_, s.slip) : Eigen::VectorXd();
   for (const ContactPressure::Vertex& c : contact_.vertices()) {
     const double force = contact_.normal_force(reaction_xy, c);
     total += force;
@@ -52,9 +53,8 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
         csv << "," << (s.reaction.size() ? length(tangential_magnitude(node, s.reaction)) : 0.0) << ","
             << length(tangential_magnitude(node, s.slip)) << "," << s.contact_status[k];
         if (mesh_.dim == 3) {
-          const TangentialVectors tv = tangential_vectors(problem_, reaction_xy, slip_xy, k);
-          csv << "," << tv.force.x << "," << tv.force.y << "," << tv.force.z << "," << tv.slip.x << "," << tv.slip.y
-              << "," << tv.slip.z;
+          const Point F = vertex_force(problem_, force_xy, c.vertex), D = vertex_force(problem_, slip_xy, c.vertex);
+          csv << "," << F.x << "," << F.y << "," << F.z << "," << D.x << "," << D.y << "," << D.z;
         }
       }
     }

@@ -1,6 +1,8 @@
 // derived_fields.cpp — σ, ε, von Mises, contact pressure and regions as VTU arrays.
 #include "derived_fields.hpp"
 
+#include <algorithm>
+
 #include "cdyn/post/contact_force.hpp"
 #include "cdyn/post/stress.hpp"
 
@@ -56,7 +58,8 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
     FieldArray slip{"slip", d, std::vector<double>(d * mesh.n_vertices(), 0.0)};
     FieldArray status{"contact_status", 1, std::vector<double>(mesh.n_vertices(), -1.0)};
     const bool stepped = state && state->slip.size() > 0;  // (not before the first step)
-    const Eigen::VectorXd slip_xy = stepped && d == 3 ? p.global(state->slip) : Eigen::VectorXd();
+    const Eigen::VectorXd force_xy = stepped && d == 3 ? tangential_xy(p, state->reaction) : Eigen::VectorXd();
+    const Eigen::VectorXd slip_xy = stepped && d == 3 ? tangential_xy(p, state->slip) : Eigen::VectorXd();
     for (std::size_t k = 0; k < p.friction.size(); ++k) {
       const int v = p.contact_nodes[p.friction[k].node].vertex;
       status.values[v] = 0.0;
@@ -67,11 +70,10 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
         slip.values[v] = tangential_magnitude(p.friction[k], state->slip);
         continue;
       }
-      const TangentialVectors tv = tangential_vectors(p, reaction_xy, slip_xy, static_cast<int>(k));
-      for (int i = 0; i < 3; ++i) {
-        force.values[3 * v + i] = i == 0 ? tv.force.x : i == 1 ? tv.force.y : tv.force.z;
-        slip.values[3 * v + i] = i == 0 ? tv.slip.x : i == 1 ? tv.slip.y : tv.slip.z;
-      }
+      const Point F = vertex_force(p, force_xy, v), D = vertex_force(p, slip_xy, v);
+      const double f[3] = {F.x, F.y, F.z}, s[3] = {D.x, D.y, D.z};
+      std::copy(f, f + 3, force.values.begin() + 3 * v);
+      std::copy(s, s + 3, slip.values.begin() + 3 * v);
     }
     for (FieldArray* a : {&force, &slip, &status}) out.point.push_back(std::move(*a));
   }

@@ -145,6 +145,11 @@ print(f"on rollers: {len(with_friction)} of {len(vertices)} contact vertices wit
       f"max |px - m a t|/(m a T) = {dev4:.2e} from step 10")
 check(with_friction == vertices, "in space, a roller vertex of the base has friction along its free direction")
 check(dev4 <= 1e-3, "in space, on rollers the plate slides along x with a = g (sin θ − μ cos θ)")
+slipping4 = [c for c in contact4 if c["step"] > 0 and c["status"] == 2]
+length4 = max(abs(math.hypot(c["tangential_force_x"], c["tangential_force_y"], c["tangential_force_z"])
+                  - c["tangential_force"]) / c["tangential_force"] for c in slipping4)
+check(len(slipping4) > 0 and length4 <= 1e-12,
+      f"in space, on rollers contact.csv's λ_T vectors have the length tangential_force ({length4:.1e})")
 
 if failures:
     sys.exit("check_friction: FAILED: " + "; ".join(failures))

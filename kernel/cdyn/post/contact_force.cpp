@@ -34,13 +34,12 @@ Point vertex_multiplier(const ConstrainedProblem& p, const Eigen::VectorXd& reac
   return {0.0 - F.x, 0.0 - F.y, 0.0 - F.z};  // (0.0 − : no printed −0)
 }
 
-TangentialVectors tangential_vectors(const ConstrainedProblem& p, const Eigen::VectorXd& reaction_xy,
-                                     const Eigen::VectorXd& slip_xy, int k) {
-  const ConstrainedProblem::ContactNode& node = p.contact_nodes[p.friction[k].node];
-  const Point& n = node.normal;
-  const Point F = vertex_force(p, reaction_xy, node.vertex);
-  const double Fn = F.x * n.x + F.y * n.y + F.z * n.z;
-  return {{F.x - Fn * n.x, F.y - Fn * n.y, F.z - Fn * n.z}, vertex_force(p, slip_xy, node.vertex)};
+Eigen::VectorXd tangential_xy(const ConstrainedProblem& p, const Eigen::VectorXd& v) {
+  if (v.size() == 0) return v;
+  Eigen::VectorXd tangential = Eigen::VectorXd::Zero(v.size());
+  for (const FrictionNode& node : p.friction)
+    for (int t : node.tangential) tangential[t] = v[t];
+  return p.global(tangential);
 }
 
 }  // namespace cdyn

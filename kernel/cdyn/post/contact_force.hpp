@@ -33,14 +33,12 @@ bool is_constrained_vertex(const ConstrainedProblem& p, int vertex);
 // to round-off (~1e-14), so λ ≤ 0 holds to that.
 Point vertex_multiplier(const ConstrainedProblem& p, const Eigen::VectorXd& reaction_xy, int vertex);
 
-// Friction node k's tangential force λ_T (the reaction less its part along the node's
-// normal n) and slip (State::slip, whose normal part is 0) as vectors in x, y, z, from
-// reaction_xy and slip_xy = p.global(State::slip); zero before the first step (empty
-// vectors).  Their lengths are tangential_magnitude's in space (problems/friction.hpp).
-struct TangentialVectors {
-  Point force, slip;
-};
-TangentialVectors tangential_vectors(const ConstrainedProblem& p, const Eigen::VectorXd& reaction_xy,
-                                     const Eigen::VectorXd& slip_xy, int k);
+// The part of v (a vector on the free unknowns in the nodal frames: the reaction, or
+// State::slip) on the friction nodes' tangential unknowns, in x, y, z: p.global() of v
+// with every other entry set to 0 (empty stays empty: before the first step).  At a
+// friction vertex it is the tangential force λ_T, or the slip, as a vector, whose length
+// is tangential_magnitude's in space (problems/friction.hpp) — also on a roller, whose
+// fixed component carries part of the normal force.
+Eigen::VectorXd tangential_xy(const ConstrainedProblem& p, const Eigen::VectorXd& v);
 
 }  // namespace cdyn
