@@ -71,13 +71,31 @@ struct SparseCholesky::Impl {
 SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
-void SparseCholesky::analyze(const SparseMatrix& S) {
+void SparseCholesky::analyze(const SparseMatrix& S) { analyze_with(S, nullptr); }
+
+void SparseCholesky::analyze(const SparseMatrix& S, const std::vector<int>& ordering) {
+  if (static_cast<long>(ordering.size()) != S.rows())
+    throw InputError("SparseCholesky: an ordering of " + std::to_string(ordering.size()) + " unknowns for a matrix of " +
+                     std::to_string(S.rows()));
+  analyze_with(S, &ordering);
+}
+
+void SparseCholesky::analyze_with(const SparseMatrix& S, const std::vector<int>* ordering) {
   if (!S.isCompressed()) throw InputError("SparseCholesky: the matrix must be compressed");
   Impl& m = *impl_;
   m.free_factor(m.L);
   m.free_factor(m.symbolic);
   cholmod_sparse A = Impl::view(S);
-  m.symbolic = cholmod_analyze(&A, &m.common);
+  if (ordering) {
+    const int saved_nmethods = m.common.nmethods, saved_ordering = m.common.method[0].ordering;
+    m.common.nmethods = 1;
+    m.common.method[0].ordering = CHOLMOD_GIVEN;
+    m.symbolic = cholmod_analyze_p(&A, const_cast<int*>(ordering->data()), nullptr, 0, &m.common);
+    m.common.nmethods = saved_nmethods;
+    m.common.method[0].ordering = saved_ordering;
+  } else {
+    m.symbolic = cholmod_analyze(&A, &m.common);
+  }
   m.check("analyze");
   m.flops = m.common.fl;
   m.outer.assign(S.outerIndexPtr(), S.outerIndexPtr() + S.outerSize() + 1);
@@ -86,6 +104,13 @@ void SparseCholesky::analyze(const SparseMatrix& S) {
   const int* perm = static_cast<const int*>(m.symbolic->Perm);
   m.position.assign(n, 0);
   for (int k = 0; k < n; ++k) m.position[perm[k]] = k;
+}
+
+std::vector<int> SparseCholesky::ordering() const {
+  const Impl& m = *impl_;
+  if (!m.symbolic) throw InputError("SparseCholesky: ordering() before analyze()");
+  const int* perm = static_cast<const int*>(m.symbolic->Perm);
+  return std::vector<int>(perm, perm + m.symbolic->n);
 }
 
 bool SparseCholesky::analyzed_for(const SparseMatrix& S) const {

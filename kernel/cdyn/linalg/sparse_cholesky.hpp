@@ -26,6 +26,12 @@ class SparseCholesky {
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
   void analyze(const SparseMatrix& S);
+  // The analysis with a given fill-reducing order (ordering[k] = the unknown eliminated
+  // k-th; CHOLMOD still postorders it): no minimum degree search.  For a principal
+  // submatrix whose parent's ordering is known, the induced order is nearly as good.
+  void analyze(const SparseMatrix& S, const std::vector<int>& ordering);
+  // The analysis's order (ordering[k] = the unknown eliminated k-th).  Requires an analysis.
+  std::vector<int> ordering() const;
   bool analyzed_for(const SparseMatrix& S) const;  // same pattern as the last analyze()
   // Numeric factorization of S (pattern as analysed).  Returns −1, or the unknown at
   // which S was found not positive definite (the factor is then dropped).
@@ -45,6 +51,7 @@ class SparseCholesky {
   double factorization_flops() const;
 
  private:
+  void analyze_with(const SparseMatrix& S, const std::vector<int>* ordering);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
