@@ -8,6 +8,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
 #include "cdyn/linalg/parallel.hpp"
+#include "cdyn/qp/kkt.hpp"
 
 namespace cdyn {
 
@@ -60,6 +61,7 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   qp_.S = SparseMatrix(Z.transpose()) * (p.A * Z);
   qp_.S = 0.5 * (qp_.S + SparseMatrix(qp_.S.transpose()));  // exact symmetry
   qp_.S.makeCompressed();
+  D_ = qp_.S.diagonal();
   Zt_ = transposed(Z);
   const int m = static_cast<int>(Z.cols());
   qp_.lower = Eigen::VectorXd::Constant(m, -std::numeric_limits<double>::infinity());
@@ -128,10 +130,22 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
 
 Eigen::VectorXd FullStepReconstruction::by_local_basis(const Eigen::VectorXd& U, double t, double* kkt) {
   const SparseMatrix& Z = modes_.Z;
-  qp_.r = transpose_times(Z, p_.load(t) - symmetric_times(p_.A, U));
+  Eigen::VectorXd r = transpose_times(Z, p_.load(t) - symmetric_times(p_.A, U));
   set_bounds(U, modes_.pinned, t);
+  // The warm start's active set: the PDAS rule at the last solution with this step's
+  // bounds and force, not the last active set itself.  The massful part moves the data
+  // every step (a lifting membrane frees a ring of vertices a step), and the last set
+  // starts the iteration one ring behind: 3.9 → 2.1 PDAS iterations a step on the
+  // lifting membrane (docs/performance.md).  (The step QP keeps the last set: its
+  // unknown moves by V dt between steps, and the rule at the last X mispredicts there.)
+  if (has_last_) {
+    if (SX_.size() != last_.X.size()) SX_ = symmetric_times(qp_.S, last_.X);
+    last_.active = active_set(qp_, last_.X, SX_ - r, D_);
+  }
+  qp_.r = std::move(r);
   last_ = solver_->solve(qp_, has_last_ ? &last_ : nullptr);
   has_last_ = true;
+  SX_ = last_.reaction + qp_.r;  // S X (the reaction is S X − r)
   if (kkt) *kkt = last_.kkt_residual;
   return U + transpose_times(Zt_, last_.X);
 }
@@ -176,12 +190,14 @@ Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U,
 
 void FullStepReconstruction::store(SchemeMemory& m) const {
   store_warm_start(m, "full_step", last_, has_last_);
+  m.store_if_any("full_step.SX", SX_);
   m.store_if_any("full_step.multiplier", mu_);
 }
 
 void FullStepReconstruction::restore(const SchemeMemory& m) {
   if (solver_) solver_->clear();
   has_last_ = load_warm_start(m, "full_step", last_);
+  SX_ = m.vector_or_empty("full_step.SX");
   mu_ = m.vector_or_empty("full_step.multiplier");
 }
 

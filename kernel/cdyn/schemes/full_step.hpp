@@ -93,11 +93,13 @@ class FullStepReconstruction {
   const ConstrainedProblem& p_;
   double tol_;
   MasslessModes modes_;
+  Eigen::VectorXd D_;  // diag(ZᵀAZ): the PDAS rule's scaling (qp/kkt.hpp)
   SparseMatrix Zt_;  // Zᵀ in compressed columns: Z d as a gather, threaded (linalg/parallel.hpp)
   BoundQP qp_;
   std::unique_ptr<StepSolver> solver_;
   QPResult last_;
   bool has_last_ = false;
+  Eigen::VectorXd SX_;  // S X at the last solution: the warm start's reaction for a new r
   // The method of multipliers: ρ and the multiplier μ of B D = 0 (C⁻¹B and Bᵀ are the
   // mass model's velocity() and momentum()).
   double rho_ = 0.0;
