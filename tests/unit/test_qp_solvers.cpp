@@ -317,17 +317,20 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   // A solver whose factor is that of S with no active bound (its first call had no
   // bounds), then the bounded QP solved again and again from its own solution, as in a
   // time loop whose contact zone has stopped moving.  Each of these calls meets an
-  // active set that differs from the factor's: the first two solve it by CG (no row
-  // update measured yet: cg_pays in explicit_reduced_system.cpp), then the set has
-  // served three solves in a row and the factor is brought to it; from there on a call
-  // is one forward/back solve with the factor and no CG.
+  // active set that differs from the factor's: the first two solve it by CG
+  // (pdas_cg_always: at 400 unknowns the flop counts of cg_pays would choose a
+  // refactorization), then the set has served three solves in a row and the factor is
+  // brought to it; from there on a call is one forward/back solve with the factor and
+  // no CG.
   const BoundQP qp = random_problem(20, 20, 7, false);
   const QPResult solution = cdyn::PDASSolver().solve(qp);
   ASSERT_GT(std::count_if(solution.active.begin(), solution.active.end(), [](auto a) { return a != 0; }), 0);
   BoundQP unbounded = qp;
   unbounded.lower.setConstant(-std::numeric_limits<double>::infinity());
   unbounded.upper.setConstant(std::numeric_limits<double>::infinity());
-  cdyn::PDASSolver pdas;
+  QPOptions cg_always;
+  cg_always.pdas_cg_always = true;
+  cdyn::PDASSolver pdas(cg_always);
   pdas.solve(unbounded);
   const auto c0 = pdas.counters();
   std::vector<int> cg_solves, factor_changes;
@@ -350,7 +353,8 @@ TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   // active bound): the iterates are solved loosely (reduced_system.cpp kLooseSolve) and the
   // repeating active set is confirmed on a tight solve.  The result must meet tol like
   // any other, with the active set of the direct solver (factor only) and X within the
-  // sum of the two a-posteriori error bounds.
+  // sum of the two a-posteriori error bounds.  (pdas_cg_always: at 400 unknowns the flop
+  // counts would choose a refactorization.)
   const BoundQP qp = random_problem(20, 20, 7, false);
   QPOptions direct_options;
   direct_options.pdas_cg_iterations = 0;
@@ -358,7 +362,9 @@ TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   BoundQP unbounded = qp;
   unbounded.lower.setConstant(-inf);
   unbounded.upper.setConstant(inf);
-  cdyn::PDASSolver pdas;
+  QPOptions cg_always;
+  cg_always.pdas_cg_always = true;
+  cdyn::PDASSolver pdas(cg_always);
   pdas.solve(unbounded);
   const auto c0 = pdas.counters();
   const QPResult r = pdas.solve(qp);

@@ -60,6 +60,10 @@ struct QPOptions {
   // since it was last (re)made.
   int pdas_cg_iterations = 80;
   int pdas_cg_resync = -1;
+  // pdas, explicit S: CG for every set other than the factor's until it settles, even
+  // where the flop counts say a refactorization or row updates cost less (small or
+  // nearly banded S): to exercise and compare the CG path on small problems.
+  bool pdas_cg_always = false;
   // pdas, explicit S: a (re)factorization for an active set that leaves at most this
   // fraction of the unknowns free factorizes the free block S_II alone, with its own
   // fill-reducing ordering, instead of S̃ in S's pattern (whose fill does not shrink with

@@ -201,24 +201,29 @@ bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
 }
 
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
-// Beyond update_limit() changes the alternative is a refactorization (≈ 30 solves): CG.
-// Otherwise it is one row update per changed unknown, whose cost CHOLMOD counts (modfl,
-// mean over the updates done so far on this pattern), against a CG solve of (mean
-// iterations so far, 50 before any) × (2 nnz(S) + 12 n) flops: the product with S and
-// the five vector updates of an iteration.  Both are memory-bound sparse loops, so flops
-// compare their times to within a small factor (docs/performance.md (a): at n = 80 small
-// changes go to row updates, at n = 160 the contact jumps go to CG).  Before any update
-// is measured, CG: the first resync measures one.  Deterministic: flop counts, not
-// clocks, so a run repeats exactly.
+// Bringing the factor there is what sync_factor does: beyond update_limit() changes a
+// refactorization, whose flops the analysis counts; otherwise one row update per
+// changed unknown, whose cost CHOLMOD counts (modfl, mean over the updates done so far
+// on this pattern; before any is measured, a refactorization's count stands in for
+// them).  That is weighed against a CG solve of (mean iterations so far, 50 before any)
+// × (2 nnz(S) + 12 n) flops: the product with S and the five vector updates of an
+// iteration.  All are sparse loops near memory speed, so flops compare their times to
+// within a small factor (docs/performance.md (a): at n = 80 small changes go to row
+// updates, at n = 160 the contact jumps go to CG; on the thin beam a factorization costs
+// 1.4e4 flops, a CG iteration 1.6e4, and CG took 20–30 iterations).  Deterministic:
+// flop counts, not clocks, so a run repeats exactly.
 bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
+  if (opt_.pdas_cg_always) return true;
   int changes = 0;
   for (int i = 0; i < n_; ++i) changes += held[i] != factor_held_[i];
   const double iterations = counters_.cg_solves > 0 ? double(counters_.cg_iterations) / counters_.cg_solves : 50.0;
   const double cg_flops = iterations * (2.0 * double(S_.nonZeros()) + 12.0 * n_);
   // With the factor of S_II the alternative is a new one (of about the same size).
   if (block_mode_) return block_chol_.factorization_flops() > cg_flops;
-  if (changes > update_limit() || updates_measured_ == 0) return true;
-  return changes * (update_flops_ / updates_measured_) > cg_flops;
+  const double sync_flops = changes <= update_limit() && updates_measured_ > 0
+                                ? changes * (update_flops_ / updates_measured_)
+                                : chol_.factorization_flops();
+  return sync_flops > cg_flops;
 }
 
 void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
