@@ -2,8 +2,8 @@
 # bench.sh — runs the benchmark set of docs/performance.md, 45 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
 # BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers,
-# bench_condition12 and bench_threads built (cmake --build BUILD --target cdyn_app bench_contact_step
-# bench_step_solvers bench_condition12 bench_threads).
+# bench_condition12, bench_bandwidth and bench_threads built (cmake --build BUILD --target cdyn_app
+# bench_contact_step bench_step_solvers bench_condition12 bench_bandwidth bench_threads).
 set -e
 BUILD=${1:-build}
 OUT=${2:-out/bench}
@@ -48,6 +48,8 @@ echo "== (j) friction: the frictional contact step against the frictionless one,
 $PY "$ROOT/bench/bench_friction.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/friction" --repeat 2
 echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
+echo "== (i) the machine's ceiling for two threads: STREAM triad and the threaded S x, 1 and 2 threads"
+"$BUILD/bench/bench_bandwidth" --benchmark_enable_random_interleaving=true
 echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 7 minutes"
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 echo "== (k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 24"
