@@ -13,7 +13,11 @@ zone grows).  Prints a table (with the time per dof and step, which a step of O(
 work would keep constant), the least-squares exponent p of time/step ∝ N^p over the
 sizes (target p ≤ 1.2), with N the free dofs, and the exponents between consecutive sizes.
 
-Usage:  /usr/bin/python3 bench/bench_scaling.py BUILD/apps/cdyn [WORKDIR] [--n 40,80,160,320,640] [--steps 20]
+With --first 20 the same runs also give the mean of their first 20 steps (history.csv's
+step_s: the step's own time, without the loop's output), so that one run per size
+serves both windows (scripts/bench.sh: --steps 270 --first 20).
+
+Usage:  /usr/bin/python3 bench/bench_scaling.py BUILD/apps/cdyn [WORKDIR] [--n 40,80,160,320,640] [--steps 20] [--first K]
 """
 import argparse
 import csv
@@ -40,8 +44,9 @@ def run(cdyn, n, steps, work):
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
     with open(os.path.join(out, "history.csv"), newline="") as f:
-        contact = [float(r["solve_s"]) for r in csv.DictReader(f) if int(r["active"]) > 0]
-    return s, rss, wall_s, contact
+        rows = [r for r in csv.DictReader(f) if int(r["step"]) > 0]
+    contact = [float(r["solve_s"]) for r in rows if int(r["active"]) > 0]
+    return s, rss, wall_s, contact, [float(r["step_s"]) for r in rows]
 
 
 def fit(points):
@@ -57,14 +62,20 @@ def main():
     ap.add_argument("work", nargs="?", default="out/bench_scaling")
     ap.add_argument("--n", default="40,80,160,320,640")
     ap.add_argument("--steps", type=int, default=20)
+    ap.add_argument("--first", type=int, default=0,
+                    help="also the mean step over steps 1..FIRST of the same runs (history.csv's step_s), "
+                         "and its exponent: both windows from one run per size")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
     print(f"load average at start: {os.getloadavg()[0]:.2f}")
     print(f"| n | free dofs | steps | s/step | ns per dof and step | QP s/step | contact steps | QP s/step in contact | whole process (s) | peak RSS (MB) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    points, qpoints, cpoints = [], [], []
+    points, qpoints, cpoints, fpoints = [], [], [], []
     for n in [int(v) for v in a.n.split(",")]:
-        s, rss, wall, contact = run(a.cdyn, n, a.steps, a.work)
+        s, rss, wall, contact, step_s = run(a.cdyn, n, a.steps, a.work)
+        if a.first:
+            fpoints.append((s["n_free"], sum(step_s[:a.first]) / len(step_s[:a.first])))
+            print(f"  n = {n}: steps 1-{a.first} of the same run: {fpoints[-1][1] * 1e3:.2f} ms a step", flush=True)
         points.append((s["n_free"], s["s_per_step"]))
         qpoints.append((s["n_free"], s["qp_s_per_step"]))
         in_contact = "—"
@@ -78,6 +89,8 @@ def main():
         print(f"fitted exponent: time/step ~ N^{fit(points):.2f} (QP part N^{fit(qpoints):.2f}); target <= 1.2")
         local = [f"{fit(points[k:k + 2]):.2f}" for k in range(len(points) - 1)]
         print(f"local exponents between consecutive sizes: {', '.join(local)}")
+    if len(fpoints) >= 2:
+        print(f"fitted exponent over steps 1-{a.first}: time/step ~ N^{fit(fpoints):.2f}")
     if len(cpoints) >= 2:
         print(f"fitted exponent of the QP time per contact step: N^{fit(cpoints):.2f}")
     print(f"load average at end: {os.getloadavg()[0]:.2f}")

@@ -28,9 +28,8 @@ $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80 --steps
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 160 --steps 270
 echo "== (b') the same in resting contact (started on the obstacle), n = 40, 80, 100 steps (n = 160: 5.5 more minutes, --n 160)"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 100 --resting
-echo "== (c) scaling n = 40 ... 640: the first 20 steps (free fall), then steps 1-270 (with the impact)"
-$PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling"
-$PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_contact" --steps 270
+echo "== (c) scaling n = 40 ... 640: steps 1-270 (with the impact) and, from the same runs, the first 20 (free fall)"
+$PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_contact" --steps 270 --first 20
 echo "== (d) solver table on the same steps"
 "$BUILD/bench/bench_step_solvers" --benchmark_counters_tabular=true
 echo "== (e) speed against error (cdyn study)"
