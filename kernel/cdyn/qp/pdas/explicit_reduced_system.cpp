@@ -161,7 +161,7 @@ void ExplicitReducedSystem::sync_factor(const HeldSet& held) {
   const int changes = static_cast<int>(to_delete.size() + to_add.size());
   if (changes == 0) return;
   // (the block factor has S_II's own ordering: no row updates on it)
-  if (block_mode_ || changes > update_limit()) return refactorize(held);
+  if (block_mode_ || changes > update_limit() || refactorization_pays(changes)) return refactorize(held);
   ScopeTimer timer(counters_.row_update_s);
   for (int i : to_delete) {
     chol_.replace_by_identity(i);
@@ -189,6 +189,16 @@ int ExplicitReducedSystem::update_limit() const {
   return opt_.pdas_update_limit >= 0 ? opt_.pdas_update_limit : std::max(300, n_ / 100);
 }
 
+// Whether a fresh factorization of S̃ costs less than `changes` row updates at their
+// mean flops so far: under half their flops (the analysis's count; the margin because a
+// refactorization also copies the analysis and rebuilds the supernodes: at n = 80 on the
+// membrane, refactorizations chosen at 1.3× fewer flops made the steps 8 % slower).  On
+// a small or nearly banded S — the thin beam's 404 unknowns: 1.4e4 flops a
+// factorization — it is the cheaper way at any number of changes.
+bool ExplicitReducedSystem::refactorization_pays(int changes) const {
+  return updates_measured_ > 0 && 2.0 * chol_.factorization_flops() < changes * (update_flops_ / updates_measured_);
+}
+
 // Whether the factor should now be brought to `held` although CG would do: when the
 // active set has settled — used by the last kSettled calls in a row (while the contact
 // zone chatters, each set serves at most two: the last solves of a step and the first of
@@ -201,17 +211,19 @@ bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
 }
 
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
-// Bringing the factor there is what sync_factor does: beyond update_limit() changes a
-// refactorization, whose flops the analysis counts; otherwise one row update per
-// changed unknown, whose cost CHOLMOD counts (modfl, mean over the updates done so far
-// on this pattern; before any is measured, a refactorization's count stands in for
-// them).  That is weighed against a CG solve of (mean iterations so far, 50 before any)
-// × (2 nnz(S) + 12 n) flops: the product with S and the five vector updates of an
-// iteration.  All are sparse loops near memory speed, so flops compare their times to
-// within a small factor (docs/performance.md (a): at n = 80 small changes go to row
-// updates, at n = 160 the contact jumps go to CG; on the thin beam a factorization costs
-// 1.4e4 flops, a CG iteration 1.6e4, and CG took 20–30 iterations).  Deterministic:
-// flop counts, not clocks, so a run repeats exactly.
+// Bringing the factor there is what sync_factor does: beyond update_limit() changes, or
+// where it pays (refactorization_pays), a refactorization, whose flops the analysis
+// counts; otherwise one row update per changed unknown, whose cost CHOLMOD counts (modfl,
+// mean over the updates done so far on this pattern; before any is measured, a
+// refactorization's count stands in for them).  That is weighed against a CG solve of (mean iterations so far) × (2 nnz(S) +
+// 12 n) flops: the product with S and the five vector updates of an iteration.  All are
+// sparse loops near memory speed, so flops compare their times to within a small factor
+// (docs/performance.md (a): at n = 80 small changes go to row updates, at n = 160 the
+// contact jumps go to CG; on the thin beam a factorization costs 1.4e4 flops, a CG
+// iteration 1.6e4, and CG took 20–30 iterations).  The first new set goes to CG, whose
+// iteration count no guess gets right (5 on the membrane at N_X = 40, dt = 0.01; 30 on
+// the beam): a guess of 50 sent the membrane to row updates, 25 % slower a step.
+// Deterministic: flop counts, not clocks, so a run repeats exactly.
 bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   if (opt_.pdas_cg_always) return true;
   int changes = 0;
@@ -220,9 +232,10 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   const double cg_flops = iterations * (2.0 * double(S_.nonZeros()) + 12.0 * n_);
   // With the factor of S_II the alternative is a new one (of about the same size).
   if (block_mode_) return block_chol_.factorization_flops() > cg_flops;
-  const double sync_flops = changes <= update_limit() && updates_measured_ > 0
-                                ? changes * (update_flops_ / updates_measured_)
-                                : chol_.factorization_flops();
+  if (counters_.cg_solves == 0) return true;  // CG's own cost measured first
+  double sync_flops = chol_.factorization_flops();
+  if (changes <= update_limit() && updates_measured_ > 0 && !refactorization_pays(changes))
+    sync_flops = changes * (update_flops_ / updates_measured_);
   return sync_flops > cg_flops;
 }
 

@@ -70,6 +70,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   Eigen::VectorXd solve_free_block(const Eigen::VectorXd& b) const;
   void sync_factor(const HeldSet& held);
   int update_limit() const;
+  bool refactorization_pays(int changes) const;
   bool resync_due(const HeldSet& held) const;
   bool cg_pays(const HeldSet& held) const;
   Eigen::VectorXd solve_tilde(const Eigen::VectorXd& b, double cg_tol);
