@@ -379,6 +379,46 @@ TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   EXPECT_LE((r.X - direct.X).lpNorm<Eigen::Infinity>(), bound(qp, r) + bound(qp, direct));
 }
 
+TEST(QPSolvers, PdasBringsTheFactorToANewSetWhereThatCostsLessThanCg) {
+  // A chain of 400 unknowns (tridiagonal S): its factorization costs a few thousand
+  // flops, less than one CG iteration (2 nnz(S) + 12 n ≈ 7e3).  The first new active
+  // set goes to CG, which measures CG's cost (cg_pays in explicit_reduced_system.cpp);
+  // the next ones are brought to the factor (row updates), not solved by CG again,
+  // although no row update had been measured before — CG until then was the rule that
+  // made the thin beam's switching steps 5–20 times its other steps (docs/performance.md).
+  const int n = 400;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.5);
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0), t.emplace_back(i + 1, i, -1.0);
+  }
+  BoundQP qp;
+  qp.S.resize(n, n);
+  qp.S.setFromTriplets(t.begin(), t.end());
+  qp.S.makeCompressed();
+  qp.lower = VectorXd::Constant(n, -inf);
+  qp.upper = VectorXd::Constant(n, inf);
+  qp.r = VectorXd::Constant(n, 1.0);
+  cdyn::PDASSolver pdas;
+  QPResult r = pdas.solve(qp);  // no bound: the factor of S
+  qp.lower.setZero();
+  auto push_down = [&](int from, int to) {  // X < 0 there without the bound
+    qp.r.setConstant(1.0);
+    qp.r.segment(from, to - from).setConstant(-1.0);
+  };
+  push_down(100, 200);
+  r = pdas.solve(qp, &r);  // PDAS meets several sets on its way: the first by CG only
+  expect_kkt(qp, r, QPOptions{}.tol, "first set");
+  EXPECT_EQ(pdas.counters().cg_solves, 1);
+  const int updates = pdas.counters().row_updates;
+  EXPECT_GT(updates, 0);
+  push_down(150, 260);
+  r = pdas.solve(qp, &r);
+  expect_kkt(qp, r, QPOptions{}.tol, "second set");
+  EXPECT_EQ(pdas.counters().cg_solves, 1);  // not CG again
+  EXPECT_GT(pdas.counters().row_updates, updates);
+}
+
 TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
   const BoundQP qp = random_problem(15, 15, 41, false);
   cdyn::PDASSolver pdas;
