@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <cmath>
+#include <limits>
 
 #include "cdyn/fe/assembly.hpp"
 #include "cdyn/fe/dirichlet.hpp"
@@ -199,6 +200,39 @@ TEST(Assembly, ElasticityPassesThePatchTest) {
     ASSERT_EQ(solver.info(), Eigen::Success);
     const Eigen::VectorXd U = bc.extend(solver.solve(bc.restrict(Eigen::VectorXd(-(A * UD)))), UD);
     EXPECT_LE((U - W.interpolate(u)).lpNorm<Eigen::Infinity>(), 1e-12) << to_string(e);
+  }
+}
+
+TEST(Assembly, ALoadUniformInSpaceIsACombinationOfUnitLoads) {
+  // load_in_time: for f uniform in space and depending on t, L(t) = Σ_k f_k(t) ∫ φ_{i,k}
+  // from integrals assembled once — linearity of the load in f, the same quadrature, so
+  // it equals assemble_load to round-off (asserted 4 ε relative: a sum of the same
+  // products in another order) at any t, for every element and both components, each
+  // call evaluating each f_k once; a field that varies in space, or a load constant in
+  // t, is assembled as before (bit for bit).
+  const Mesh mesh = unit_square_mesh(5);
+  int calls = 0;
+  auto g = [&calls](const Point&, double t) {
+    ++calls;
+    return -0.6 + 3.0 * std::sin(60.0 * t);
+  };
+  auto h = [](const Point&, double t) { return 2.0 - t; };
+  const Field gu = Field(g).uniform_in_space(), hu = Field(h).uniform_in_space();
+  const Field varying([](const Point& p, double t) { return p.x * p.y + t; });
+  for (Element e : {Element::P1, Element::P1Bubble, Element::P2}) {
+    const FESpace W(mesh, e, 2);
+    const auto L = load_in_time(W, {gu, hu}, true);
+    for (double t : {0.0, 0.013, 0.4}) {
+      const Eigen::VectorXd assembled = assemble_load(W, {gu, hu}, t);
+      calls = 0;
+      const Eigen::VectorXd combined = L(t);
+      EXPECT_EQ(calls, 1) << to_string(e);
+      EXPECT_LE((combined - assembled).lpNorm<Eigen::Infinity>(),
+                4 * std::numeric_limits<double>::epsilon() * assembled.lpNorm<Eigen::Infinity>())
+          << to_string(e) << " t = " << t;
+      EXPECT_EQ(load_in_time(W, {varying, hu}, true)(t), assemble_load(W, {varying, hu}, t)) << to_string(e);
+      EXPECT_EQ(load_in_time(W, {gu, hu}, false)(t), assembled) << to_string(e);
+    }
   }
 }
 

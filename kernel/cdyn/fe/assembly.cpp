@@ -248,6 +248,23 @@ Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, dou
   return weighted_load(W, nullptr, f, t);
 }
 
+std::function<Eigen::VectorXd(double)> load_in_time(const FESpace& W, std::vector<Field> f, bool depends_on_time) {
+  const bool uniform = std::none_of(f.begin(), f.end(), [](const Field& fk) { return fk.depends_on_space(); });
+  if (!depends_on_time || !uniform || f.size() != static_cast<std::size_t>(W.components()))
+    return [&W, f = std::move(f)](double t) { return assemble_load(W, f, t); };
+  std::vector<Eigen::VectorXd> unit;  // ∫ φ_{i,k}: the load of f_k = 1 alone
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    std::vector<Field> e(f.size(), Field([](const Point&, double) { return 0.0; }).uniform_in_space());
+    e[k] = Field([](const Point&, double) { return 1.0; }).uniform_in_space();
+    unit.push_back(assemble_load(W, e));
+  }
+  return [f = std::move(f), unit = std::move(unit)](double t) {
+    Eigen::VectorXd L = Eigen::VectorXd::Zero(unit[0].size());
+    for (std::size_t k = 0; k < f.size(); ++k) L += f[k](Point{}, t) * unit[k];
+    return L;
+  };
+}
+
 Eigen::VectorXd assemble_load(const FESpace& W, const CellCoefficient& w, const std::vector<Field>& f, double t) {
   check_cells(w, W.mesh(), "assemble_load");
   return weighted_load(W, &w, f, t);

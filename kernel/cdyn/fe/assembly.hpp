@@ -15,6 +15,8 @@
 // spaces give block matrices with the components interleaved.
 #pragma once
 
+#include <functional>
+
 #include <Eigen/Sparse>
 
 #include "cdyn/fe/cell_coefficient.hpp"
@@ -47,6 +49,15 @@ SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda
 // smooth data.
 Eigen::VectorXd assemble_load(const FESpace& W, const std::vector<Field>& f, double t = 0.0);
 Eigen::VectorXd assemble_load(const FESpace& W, const Field& f, double t = 0.0);
+
+// t ↦ assemble_load(W, f, t), for a problem whose load is asked at every step.  When f
+// depends on t and every component is uniform in space (an expression without x, y, z,
+// such as "-0.6 + 3*sin(60*t)"), L(t) = Σ_k f_k(t) ∫ φ_{i,k}: the integrals of a unit
+// load in each component are assembled once and each call is one evaluation of each f_k
+// and a combination of vectors (the same quadrature; round-off aside, the same vector).
+// Otherwise every call assembles (a load constant in t is assembled once by its user).
+// W must outlive the returned function.
+std::function<Eigen::VectorXd(double)> load_in_time(const FESpace& W, std::vector<Field> f, bool depends_on_time);
 
 // L_i = ∫ w f(x, y, t) · φ_i with a weight constant per cell, e.g. the weight ρ g of a
 // body of several densities under gravity g (f = g, w = ρ).  Same rule as above.

@@ -278,8 +278,8 @@ ConstrainedProblem build_elastic_contact(const Mesh& mesh, const ElasticContactD
     }
   bool weighted_gravity = false;
   for (double gk : g) weighted_gravity = weighted_gravity || (!rho.is_uniform() && gk != 0.0);
-  p.L_full = [&W, f, gN, neumann, g, rho, weighted_gravity](double t) {
-    Eigen::VectorXd L = assemble_load(W, f, t);
+  p.L_full = [&W, body = load_in_time(W, f, !d.load_is_constant), gN, neumann, g, rho, weighted_gravity](double t) {
+    Eigen::VectorXd L = body(t);
     if (weighted_gravity) {
       std::vector<Field> gk;
       for (double value : g) gk.push_back(Field([value](const Point&, double) { return value; }).uniform_in_space());

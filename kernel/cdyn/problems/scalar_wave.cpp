@@ -15,8 +15,7 @@ ConstrainedProblem build_scalar_wave(const Mesh& mesh, const ScalarWaveData& d) 
   const FESpace& W = *p.W;
   p.bc = std::make_unique<DirichletLift>(W, d.dirichlet_parts);
   p.A_full = d.kappa * assemble_laplace(W);
-  const Field f = d.f;
-  p.L_full = [&W, f](double t) { return assemble_load(W, f, t); };
+  p.L_full = load_in_time(W, {d.f}, !d.load_is_constant);
   p.load_is_constant = d.load_is_constant;
   p.UD = d.dirichlet_parts.empty() ? Eigen::VectorXd::Zero(W.n_dofs()) : p.bc->lifting(W, {d.dirichlet_value});
   p.A = p.bc->restrict(p.A_full);
