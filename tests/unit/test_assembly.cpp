@@ -203,6 +203,16 @@ TEST(Assembly, ElasticityPassesThePatchTest) {
   }
 }
 
+namespace {
+// The chatter's load −0.6 + 3 sin(60 t) as a callable that counts its calls.
+auto counted_chatter_load(int& calls) {
+  return [&calls](const Point&, double t) {
+    ++calls;
+    return -0.6 + 3.0 * std::sin(60.0 * t);
+  };
+}
+}  // namespace
+
 TEST(Assembly, ALoadUniformInSpaceIsACombinationOfUnitLoads) {
   // load_in_time: for f uniform in space and depending on t, L(t) = Σ_k f_k(t) ∫ φ_{i,k}
   // from integrals assembled once — linearity of the load in f, the same quadrature, so
@@ -212,10 +222,7 @@ TEST(Assembly, ALoadUniformInSpaceIsACombinationOfUnitLoads) {
   // t, is assembled as before (bit for bit).
   const Mesh mesh = unit_square_mesh(5);
   int calls = 0;
-  auto g = [&calls](const Point&, double t) {
-    ++calls;
-    return -0.6 + 3.0 * std::sin(60.0 * t);
-  };
+  const auto g = counted_chatter_load(calls);
   auto h = [](const Point&, double t) { return 2.0 - t; };
   const Field gu = Field(g).uniform_in_space(), hu = Field(h).uniform_in_space();
   const Field varying([](const Point& p, double t) { return p.x * p.y + t; });
@@ -243,10 +250,7 @@ TEST(Assembly, AUniformFieldIsIntegratedFromOneEvaluation) {
   // every quadrature point.
   const Mesh mesh = unit_square_mesh(4);
   int calls = 0;
-  auto f = [&calls](const Point&, double t) {
-    ++calls;
-    return -0.6 + 3.0 * std::sin(60.0 * t);
-  };
+  const auto f = counted_chatter_load(calls);
   const Field varying(f);
   const Field uniform = Field(f).uniform_in_space();
   EXPECT_TRUE(varying.depends_on_space());
