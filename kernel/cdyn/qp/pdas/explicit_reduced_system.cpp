@@ -192,7 +192,8 @@ int ExplicitReducedSystem::update_limit() const {
 // Whether a fresh factorization of S̃ costs less than `changes` row updates at their
 // mean flops so far: under half their flops (the analysis's count; the margin because a
 // refactorization also copies the analysis and rebuilds the supernodes: at n = 80 on the
-// membrane, refactorizations chosen at 1.3× fewer flops made the steps 8 % slower).  On
+// membrane without CG, refactorizations chosen at 1.3× fewer flops made the steps 8 %
+// slower).  On
 // a small or nearly banded S — the thin beam's 404 unknowns: 1.4e4 flops a
 // factorization — it is the cheaper way at any number of changes.
 bool ExplicitReducedSystem::refactorization_pays(int changes) const {
@@ -213,17 +214,18 @@ bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
 // Bringing the factor there is what sync_factor does: beyond update_limit() changes, or
 // where it pays (refactorization_pays), a refactorization, whose flops the analysis
-// counts; otherwise one row update per changed unknown, whose cost CHOLMOD counts (modfl,
-// mean over the updates done so far on this pattern; before any is measured, a
-// refactorization's count stands in for them).  That is weighed against a CG solve of (mean iterations so far) × (2 nnz(S) +
-// 12 n) flops: the product with S and the five vector updates of an iteration.  All are
-// sparse loops near memory speed, so flops compare their times to within a small factor
-// (docs/performance.md (a): at n = 80 small changes go to row updates, at n = 160 the
-// contact jumps go to CG; on the thin beam a factorization costs 1.4e4 flops, a CG
-// iteration 1.6e4, and CG took 20–30 iterations).  The first new set goes to CG, whose
-// iteration count no guess gets right (5 on the membrane at N_X = 40, dt = 0.01; 30 on
-// the beam): a guess of 50 sent the membrane to row updates, 25 % slower a step.
-// Deterministic: flop counts, not clocks, so a run repeats exactly.
+// counts; otherwise one row update per changed unknown, whose cost CHOLMOD counts
+// (modfl, mean over the updates done so far on this pattern; before any is measured, a
+// refactorization's count stands in for them).  That is weighed against a CG solve of
+// (mean iterations so far) × (2 nnz(S) + 12 n) flops: the product with S and the five
+// vector updates of an iteration.  All are sparse loops near memory speed, so flops
+// compare their times to within a small factor (docs/performance.md (a): at n = 80
+// small changes go to row updates, at n = 160 the contact jumps go to CG; on the thin
+// beam a factorization costs 1.4e4 flops, a CG iteration 1.6e4, and CG took 20–30
+// iterations).  The first new set goes to CG, whose iteration count no guess gets right
+// (5 on the membrane at N_X = 40, dt = 0.01; 30 on the beam): a guess of 50 sent the
+// membrane to row updates, 25 % slower a step.  Deterministic: flop counts, not clocks,
+// so a run repeats exactly.
 bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   if (opt_.pdas_cg_always) return true;
   int changes = 0;
