@@ -61,7 +61,7 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   qp_.S = SparseMatrix(Z.transpose()) * (p.A * Z);
   qp_.S = 0.5 * (qp_.S + SparseMatrix(qp_.S.transpose()));  // exact symmetry
   qp_.S.makeCompressed();
-  D_ = qp_.S.diagonal();
+  D_ = scaling_diagonal(qp_);  // the D of pdas's own rule
   Zt_ = transposed(Z);
   const int m = static_cast<int>(Z.cols());
   qp_.lower = Eigen::VectorXd::Constant(m, -std::numeric_limits<double>::infinity());

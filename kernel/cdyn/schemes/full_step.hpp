@@ -93,7 +93,7 @@ class FullStepReconstruction {
   const ConstrainedProblem& p_;
   double tol_;
   MasslessModes modes_;
-  Eigen::VectorXd D_;  // diag(ZᵀAZ): the PDAS rule's scaling (qp/kkt.hpp)
+  Eigen::VectorXd D_;  // scaling_diagonal of the QP, diag(ZᵀAZ): the PDAS rule's (qp/kkt.hpp)
   SparseMatrix Zt_;  // Zᵀ in compressed columns: Z d as a gather, threaded (linalg/parallel.hpp)
   BoundQP qp_;
   std::unique_ptr<StepSolver> solver_;
