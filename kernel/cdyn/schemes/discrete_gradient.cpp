@@ -173,7 +173,6 @@ class DiscreteGradient final : public StepQPScheme {
       it.psi1 = p_.potential_energy(it.W1, t1);
       it.reaction = trial_state.reaction;
       if (!autonomous_) it.work = data.work(p_, it.X, it.reaction);
-      it.reaction = trial_state.reaction;
       const double DMD = D.dot(mass_times(D));
       it.dq2 = 4 * DMD;  // |Δq|²_C = ΔUᵀ M ΔU
       const double pull = 4 * c * BtV.dot(D);
