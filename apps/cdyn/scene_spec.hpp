@@ -118,7 +118,7 @@ struct SceneSpec {
     // preconditioner of its Krylov solves (empty: the solver's default)
     std::string backend = "native", pc;
     // solver.linear = "auto": the CG path or the factor chosen per problem at set-up
-    // (simulation.cpp, cg_pays)
+    // (simulation.cpp, cg_path_pays)
     bool linear_auto = false;
   } solver;
 

@@ -280,7 +280,7 @@ void check_backend(const Simulation& sim) {
 // energy-exact one (its correction needs solves below the QP tolerance); the factor
 // otherwise (2D, small 3D problems, saddle forms).
 namespace {
-bool cg_pays(const Simulation& sim) {
+bool cg_path_pays(const Simulation& sim) {
   const SceneSpec& s = sim.spec;
   const ConstrainedProblem& p = sim.problem;
   const int bubbles = p.W->element() == Element::P1Bubble && s.time.parameters.condense
@@ -314,7 +314,7 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.n_steps = s.time.n_steps;
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
-  if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_pays(sim);
+  if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_path_pays(sim);
   // the full-step reconstruction's QP solved as the step's: by CG alone on that path
   sim.spec.time.parameters.reconstruct_by_cg = s.solver.options.pdas_cg_only;
   // (the CG path's solves stop at the QP tolerance, above what the energy-exact
