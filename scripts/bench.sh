@@ -1,5 +1,5 @@
 #!/bin/sh
-# bench.sh — runs the benchmark set of docs/performance.md, 34 minutes on the 2-core
+# bench.sh — runs the benchmark set of docs/performance.md, about 28 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
 # BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers,
 # bench_condition12, bench_bandwidth and bench_threads built (cmake --build BUILD --target cdyn_app
@@ -23,11 +23,11 @@ echo "== (a) contact overhead, membrane P1+/P0 midpoint n = 160 and 80, steps 21
     --benchmark_enable_random_interleaving=true
 CDYN_BENCH_N=80 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1' \
     --benchmark_enable_random_interleaving=true
-echo "== (b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, 300 steps (n = 160: 270 steps)"
-$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80 --steps 300
-$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 160 --steps 270
-echo "== (b') the same in resting contact (started on the obstacle), n = 40, 80, 100 steps (n = 160: 5.5 more minutes, --n 160)"
+echo "== (b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, the impact window: steps 241-300, n = 40, 80, 160"
+$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80,160 --steps 300 --first 241
+echo "== (b') the same in resting contact (started on the obstacle): steps 1-100 at n = 40, 80, 1-50 at n = 160"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 100 --resting
+$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 160 --steps 50 --resting
 echo "== (c) scaling n = 40 ... 640: steps 1-270 (with the impact) and, from the same runs, the first 20 (free fall)"
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_contact" --steps 270 --first 20
 echo "== (d) solver table on the same steps"
