@@ -13,15 +13,15 @@
 // memory (schemes/scheme_memory.hpp) are kept.  Each iteration builds a fresh scheme and
 // solver, restores that memory, takes step 210 untimed (it rebuilds the solver's factor,
 // as the steps before did in a run) and times the window on K threads (manual time:
-// seconds per step).  2 repetitions of each case; scripts/bench.sh interleaves them at random
-// (--benchmark_enable_random_interleaving=true) so that one and two threads see the same
-// machine.  Counters per step: qp_ms (the solver's share), cg_ms, solve_ms (forward/back
+// seconds per step).  One run of each case unless --benchmark_repetitions says more;
+// scripts/bench.sh interleaves the cases at random (--benchmark_enable_random_interleaving=true)
+// so that one and two threads see the same machine.  Counters per step: qp_ms (the solver's share), cg_ms, solve_ms (forward/back
 // solves with the factor), fact_ms (numeric factorizations); unknowns, the free dofs.
 //
 // After the table: the speed-up t(1 thread) / t(2 threads) of each case (target ≥ 1.6),
 // and how far apart the states after the window are, max |U₁ − U₂| / max |U₁|: 0 but for
 // the BLAS's round-off (its threaded factorization and solve, linalg/threads.hpp).
-// Run (Release build, an idle machine; about 5 minutes):
+// Run (Release build, an idle machine; about 3 minutes, 5 with --benchmark_repetitions=2):
 //   build/bench/bench_threads --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 // CDYN_BENCH_SIZES=80,160 runs other sizes (the window is the same: the impact time does not
 // depend on the mesh); CDYN_BENCH_LINEAR=cg solves the step QPs by CG alone (solver.linear =
@@ -154,9 +154,7 @@ void register_all() {
             ->ArgName("n")
             ->UseManualTime()
             ->Unit(benchmark::kMillisecond)
-            ->Iterations(1)
-            ->Repetitions(2)
-            ->ReportAggregatesOnly(true);
+            ->Iterations(1);
       }
 }
 

@@ -28,8 +28,9 @@ $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80,160 --s
 echo "== (b') the same in resting contact (started on the obstacle): steps 1-100 at n = 40, 80, 1-50 at n = 160"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 100 --resting
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 160 --steps 50 --resting
-echo "== (c) scaling n = 40 ... 640: steps 1-270 (with the impact) and, from the same runs, the first 20 (free fall)"
-$PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_contact" --steps 270 --first 20
+echo "== (c) scaling n = 40 ... 640: free flight (steps 1-20), then resting contact (started on the obstacle, steps 1-30)"
+$PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling" --steps 20 --no-wellposed
+$PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_resting" --steps 30 --resting --no-wellposed
 echo "== (d) solver table on the same steps"
 "$BUILD/bench/bench_step_solvers" --benchmark_counters_tabular=true
 echo "== (e) speed against error (cdyn study)"
