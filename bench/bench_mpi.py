@@ -2,13 +2,15 @@
 """bench_mpi.py — the PETSc back end on this machine's cores: strong scaling of the step
 QP and what it exchanges (docs/distributed.md, "Measured").
 
-Usage: bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR [--sizes 16,32] [--pcs gamg,jacobi]
+Usage: bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR [--sizes 16,32] [--pcs gamg,jacobi] [--native factor,cg] [--log]
 
 The scene: data/scenes/cube_3d.toml, the unit cube falling onto a plane (as
 bench_three_d.py: dt = h/2, 16 steps, contact from step 6 on), P1+/P0 midpoint with the
 bubbles condensed.  For each size, one run of each of
   - native pdas (the Cholesky factor, CG while the active set moves) and the native
-    CG path (solver.linear = "cg"),
+    CG path (solver.linear = "cg"), or only those --native names (scripts/bench.sh: cg,
+    the path the PETSc pdas distributes; the factor's n = 32 run alone is 100 s and
+    4.2 GB, and bench_three_d.py measures that path),
   - petsc pdas on 1 and on 2 ranks, for each preconditioner,
 reporting the mean over the contact window (steps 6–16) of history.csv's solve_s (the
 step QP) and step_s (the whole step), the strong-scaling speed-up and efficiency of the
@@ -61,6 +63,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--sizes", default="16,32")
     ap.add_argument("--pcs", default="gamg,jacobi")
+    ap.add_argument("--native", default="factor,cg")
     ap.add_argument("--log", action="store_true")
     a = ap.parse_args()
     a.scene = os.path.join(a.source, "data", "scenes", "cube_3d.toml")
@@ -70,7 +73,8 @@ def main():
     log = ""
     for n in sizes:
         base = scene(n)
-        for label, sets in (("native factor", []), ("native cg", ["solver.linear=cg"])):
+        native = {"factor": ("native factor", []), "cg": ("native cg", ["solver.linear=cg"])}
+        for label, sets in (native[k] for k in a.native.split(",") if k):
             qp, step, peak, summary, _ = run(a, os.path.join(a.out, f"n{n}_{label.replace(' ', '_')}"), 0, base + sets)
             print(f"| {n} | {summary['n_free']} | {label} | 1 | {qp:.4g} | {step:.4g} | | | {peak / 1024:.0f} |", flush=True)
         for pc in a.pcs.split(","):
