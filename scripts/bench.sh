@@ -1,5 +1,5 @@
 #!/bin/sh
-# bench.sh — runs the benchmark set of docs/performance.md, about 28 minutes on the 2-core
+# bench.sh — runs the benchmark set of docs/performance.md, about 20 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
 # BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers,
 # bench_condition12, bench_bandwidth and bench_threads built (cmake --build BUILD --target cdyn_app
@@ -25,9 +25,9 @@ CDYN_BENCH_N=80 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=t
     --benchmark_enable_random_interleaving=true
 echo "== (b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, the impact window: steps 241-300, n = 40, 80, 160"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80,160 --steps 300 --first 241
-echo "== (b') the same in resting contact (started on the obstacle): steps 1-100 at n = 40, 80, 1-50 at n = 160"
+echo "== (b') the same in resting contact (started on the obstacle): steps 1-100 at n = 40, 80, 1-30 at n = 160"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 100 --resting
-$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 160 --steps 50 --resting
+$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 160 --steps 30 --resting
 echo "== (c) scaling n = 40 ... 640: free flight (steps 1-20), then resting contact (started on the obstacle, steps 1-30)"
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling" --steps 20 --no-wellposed
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_resting" --steps 30 --resting --no-wellposed
@@ -46,16 +46,16 @@ echo "== (h) contact in every regime: impact, resting, chatter, disk, beam (P1+/
 $PY "$ROOT/bench/bench_regimes.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/regimes" --repeat 2
 echo "== (j) friction: the frictional contact step against the frictionless one, disk and ramp, backward Euler"
 $PY "$ROOT/bench/bench_friction.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/friction" --repeat 2
-echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 2 minutes"
-"$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
+echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 1.5 minutes"
+CDYN_BENCH_N=40,80,160,320,577 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
 echo "== (i) the machine's ceiling for two threads: STREAM triad and the threaded S x, 1 and 2 threads"
 "$BUILD/bench/bench_bandwidth" --benchmark_enable_random_interleaving=true
-echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 7 minutes"
+echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 3.5 minutes"
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
-echo "== (k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 24"
-# (the factor at n = 32, 3.5 more minutes: --linear factor --sizes 32)
+echo "== (k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 16"
+# (the factor at n = 24, 1 more minute: --linear factor --sizes 24; at n = 32, 3.5 more minutes)
 $PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24,32 --linear cg
-$PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24 --linear factor
+$PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16 --linear factor
 if [ -f "$BUILD/kernel/libcdyn_petsc.so" ]; then
   echo "== (l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 2.5 minutes"
   $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 16,32 --pcs jacobi --native cg --log
