@@ -419,6 +419,53 @@ TEST(QPSolvers, PdasBringsTheFactorToANewSetWhereThatCostsLessThanCg) {
   EXPECT_GT(pdas.counters().row_updates, updates);
 }
 
+TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
+  // A well-conditioned 2D step matrix (the 5-point Laplacian plus 20 I on a 30 × 30
+  // grid: CG converges in a few iterations, a refactorization costs tens of them) and a
+  // contact zone that chatters: two active sets in turn, each for three calls — long
+  // enough to count as settled (resync_due), too short to repay bringing the factor
+  // there (resync_pays).  The first settled set is synced (nothing seen yet says it will
+  // not stay); once settled sets have been seen to serve one call after settling, the
+  // factor is left alone: no factorization and no row update in the later cycles, each
+  // call by CG.  (With a resync at every settled set — the rule before — each cycle
+  // changes the factor: a chattering membrane spent 3.7 ms a step on it.)
+  const int m = 30, n = m * m;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int k = i * m + j;
+      t.emplace_back(k, k, 24.0);
+      if (i + 1 < m) t.emplace_back(k, k + m, -1.0), t.emplace_back(k + m, k, -1.0);
+      if (j + 1 < m) t.emplace_back(k, k + 1, -1.0), t.emplace_back(k + 1, k, -1.0);
+    }
+  BoundQP qp;
+  qp.S.resize(n, n);
+  qp.S.setFromTriplets(t.begin(), t.end());
+  qp.S.makeCompressed();
+  qp.lower = VectorXd::Zero(n);
+  qp.upper = VectorXd::Constant(n, inf);
+  auto press = [&](int first_row, int last_row) {  // X < 0 on those rows without the bound
+    qp.r.setConstant(n, 1.0);
+    qp.r.segment(first_row * m, (last_row - first_row) * m).setConstant(-1.0);
+  };
+  cdyn::PDASSolver pdas;
+  press(5, 15);
+  QPResult r = pdas.solve(qp);
+  auto syncs = [&] { return pdas.counters().factorizations + pdas.counters().row_updates; };
+  int after_two_cycles = 0;
+  for (int cycle = 0; cycle < 6; ++cycle) {
+    if (cycle == 2) after_two_cycles = syncs();
+    press(cycle % 2 ? 5 : 12, cycle % 2 ? 15 : 22);
+    for (int call = 0; call < 3; ++call) {
+      r = pdas.solve(qp, &r);
+      expect_kkt(qp, r, QPOptions{}.tol, "cycle " + std::to_string(cycle));
+    }
+  }
+  EXPECT_GT(after_two_cycles, 1);  // the first factorization and the first settled set's sync
+  EXPECT_EQ(syncs(), after_two_cycles);
+  EXPECT_GT(pdas.counters().cg_solves, 12);
+}
+
 TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
   const BoundQP qp = random_problem(15, 15, 41, false);
   cdyn::PDASSolver pdas;

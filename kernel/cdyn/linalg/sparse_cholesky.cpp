@@ -19,6 +19,7 @@ struct SparseCholesky::Impl {
   std::vector<int> outer, inner;       // pattern of the analysed matrix
   std::vector<int> position;           // position[i] = row of L holding original unknown i
   double flops = 0.0;                  // of a numeric factorization (the analysis's count)
+  double lnz = 0.0;                    // entries of L (the analysis's count)
   mutable cholmod_dense* X = nullptr;  // solve workspaces (cholmod_solve2)
   mutable cholmod_dense* Y = nullptr;
   mutable cholmod_dense* E = nullptr;
@@ -98,6 +99,7 @@ void SparseCholesky::analyze_with(const SparseMatrix& S, const std::vector<int>*
   }
   m.check("analyze");
   m.flops = m.common.fl;
+  m.lnz = m.common.lnz;
   m.outer.assign(S.outerIndexPtr(), S.outerIndexPtr() + S.outerSize() + 1);
   m.inner.assign(S.innerIndexPtr(), S.innerIndexPtr() + S.nonZeros());
   const int n = static_cast<int>(S.rows());
@@ -167,6 +169,8 @@ void SparseCholesky::replace_by_identity(int i) {
 double SparseCholesky::modification_flops() const { return impl_->common.modfl; }
 
 double SparseCholesky::factorization_flops() const { return impl_->flops; }
+
+double SparseCholesky::solve_flops() const { return 4.0 * impl_->lnz; }
 
 bool SparseCholesky::restore(int i, const SparseMatrix& S, const std::vector<char>& keep) {
   Impl& m = *impl_;

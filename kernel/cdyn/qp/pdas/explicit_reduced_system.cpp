@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/linalg/parallel.hpp"
@@ -206,10 +207,66 @@ bool ExplicitReducedSystem::refactorization_pays(int changes) const {
 // the next) — so that the coming steps are one forward/back solve each again; or after
 // pdas_cg_resync CG iterations since the last sync, if set.
 bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
-  constexpr int kSettled = 3;
   if (opt_.pdas_cg_resync >= 0 && cg_since_sync_ >= opt_.pdas_cg_resync) return true;
-  return cg_mode_ && held == cg_held_ && cg_held_call_ != calls_ && cg_mode_uses_ + 1 >= kSettled;
+  return cg_mode_ && held == cg_held_ && cg_held_call_ != calls_ && cg_mode_uses_ + 1 >= kSettled &&
+         resync_pays(held);
 }
+
+// Whether bringing the factor to a settled set costs less than the CG it saves: each
+// call the set serves from now on costs one solve with the factor instead of a CG pair
+// (a loose solve and its tight resumption: twice the mean CG solve), and the settled
+// sets seen so far served `uses` such calls on average.  A refactorization of the
+// condensed P1+/P0 membrane (n = 160) costs 22 forward/back solves' flops, or 110 CG
+// iterations; a chattering contact zone that settles for two or three steps at a time
+// spent 3.7 ms a step on them, and its steps took 1.45 instead of 1.78 times the linear
+// step without (docs/performance.md, "Contact in every regime").  Until a settled set has
+// ended, and for resting contact (a small free block, cheap to factorize and to solve
+// with), it pays.  Flop counts, not clocks: a run repeats exactly.
+bool ExplicitReducedSystem::resync_pays(const HeldSet& held) const {
+  if (settled_runs_ == 0 || counters_.cg_solves == 0) return true;
+  const double uses = settled_uses_ / settled_runs_;
+  const double cg_call = 2.0 * double(counters_.cg_iterations) / counters_.cg_solves * cg_iteration_flops();
+  int changes = 0, n_free = 0;
+  for (int i = 0; i < n_; ++i) {
+    changes += held[i] != factor_held_[i];
+    n_free += !held[i];
+  }
+  // What sync_factor(held) will do, and the solves it leaves.  A new free block's flops
+  // are estimated from S's: a fraction f of the unknowns of a 2D-like graph, f^1.5 of
+  // the factorization (nested dissection's N^1.5) and f of the solve.
+  double sync = 0.0, solve = chol_.solve_flops();
+  if (block_mode_) {
+    sync = block_chol_.factorization_flops();
+    solve = block_chol_.solve_flops();
+  } else if (changes > update_limit() || refactorization_pays(changes) || updates_measured_ == 0) {
+    const double f = double(n_free) / n_;
+    const bool block = n_free <= opt_.pdas_free_block * n_;
+    sync = chol_.factorization_flops() * (block ? std::pow(f, 1.5) : 1.0);
+    solve *= block ? f : 1.0;
+  } else {
+    sync = changes * (update_flops_ / updates_measured_);
+  }
+  return uses * (cg_call - solve) > sync;
+}
+
+// Counts the calls in a row that use one held set (resync_pays).
+void ExplicitReducedSystem::track_run(const HeldSet& held) {
+  if (held != run_held_) {
+    if (run_uses_ >= kSettled) {
+      ++settled_runs_;
+      settled_uses_ += run_uses_ - kSettled + 1;
+    }
+    run_held_ = held;
+    run_uses_ = 1;
+  } else if (run_call_ != calls_) {
+    ++run_uses_;
+  }
+  run_call_ = calls_;
+}
+
+// A CG iteration's flops: the product with S (read once, Eisenstat's trick: masked_cg.hpp)
+// and the five vector updates.
+double ExplicitReducedSystem::cg_iteration_flops() const { return 2.0 * double(S_.nonZeros()) + 12.0 * n_; }
 
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
 // Bringing the factor there is what sync_factor does: beyond update_limit() changes, or
@@ -231,7 +288,7 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   int changes = 0;
   for (int i = 0; i < n_; ++i) changes += held[i] != factor_held_[i];
   const double iterations = counters_.cg_solves > 0 ? double(counters_.cg_iterations) / counters_.cg_solves : 50.0;
-  const double cg_flops = iterations * (2.0 * double(S_.nonZeros()) + 12.0 * n_);
+  const double cg_flops = iterations * cg_iteration_flops();
   // With the factor of S_II the alternative is a new one (of about the same size).
   if (block_mode_) return block_chol_.factorization_flops() > cg_flops;
   if (counters_.cg_solves == 0) return true;  // CG's own cost measured first
@@ -242,6 +299,7 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
 }
 
 void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
+  track_run(held);
   if (opt_.pdas_cg_only) {
     cg_held_ = held;
     return;

@@ -19,7 +19,9 @@
 //     factorization when the contact zone jumps;
 //   - once an active set has served three calls in a row the contact zone has settled,
 //     and the factor is brought to it (resync_due), so that the coming steps are one
-//     forward/back solve each again;
+//     forward/back solve each again — where that pays (resync_pays): the settled sets
+//     seen so far tell how many more calls one serves, and a contact zone that settles
+//     for a few steps and moves again (chattering) does not repay a refactorization;
 //   - when most unknowns are held (resting contact: a body lying on the obstacle), S̃
 //     in S's pattern still has the fill of the whole S, while the free block S_II alone,
 //     ordered by its own analysis, is much smaller: a refactorization for a set that
@@ -72,7 +74,10 @@ class ExplicitReducedSystem : public ReducedSystem {
   int update_limit() const;
   bool refactorization_pays(int changes) const;
   bool resync_due(const HeldSet& held) const;
+  bool resync_pays(const HeldSet& held) const;
   bool cg_pays(const HeldSet& held) const;
+  double cg_iteration_flops() const;
+  void track_run(const HeldSet& held);
   Eigen::VectorXd solve_tilde(const Eigen::VectorXd& b, double cg_tol);
 
   const QPOptions& opt_;
@@ -103,6 +108,14 @@ class ExplicitReducedSystem : public ReducedSystem {
   // CHOLMOD counts them for a row update; CG iterations), for cg_pays().
   double update_flops_ = 0.0;
   int updates_measured_ = 0;
+  // Runs of one held set over consecutive calls, whatever solved them (resync_pays): the
+  // current run, and the runs that reached kSettled calls with the calls they served from
+  // the kSettled-th on (those a resync would have served by the factor).
+  static constexpr int kSettled = 3;
+  HeldSet run_held_;
+  int run_uses_ = 0, run_call_ = -1;
+  int settled_runs_ = 0;
+  double settled_uses_ = 0.0;
 };
 
 }  // namespace cdyn
