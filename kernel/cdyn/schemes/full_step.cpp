@@ -27,7 +27,7 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
     : FullStepReconstruction(p, tol, false) {}
 
 FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers,
-                                               bool cg_only)
+                                               Solves solves)
     : p_(p), tol_(tol) {
   QPOptions options;
   options.tol = tol;
@@ -66,8 +66,9 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   const int m = static_cast<int>(Z.cols());
   qp_.lower = Eigen::VectorXd::Constant(m, -std::numeric_limits<double>::infinity());
   qp_.upper = Eigen::VectorXd::Constant(m, std::numeric_limits<double>::infinity());
-  if (cg_only) {
-    options.pdas_cg_only = true;
+  if (solves != Solves::Mixed) {
+    options.pdas_cg_only = solves == Solves::CgOnly;
+    if (solves == Solves::Direct) options.pdas_cg_iterations = 0;
     solver_ = make_step_solver("pdas", options);
   }
 }

@@ -55,11 +55,17 @@ class FullStepReconstruction {
   // (P2/P1, P1+/P1); or not at all (a local basis that leaves a constrained unknown
   // with mass: condition (12) fails in local form).
   enum class Method { None, LocalBasis, Multipliers };
+  // How the local basis's QP is solved by pdas (the multipliers' saddle form keeps its LU):
+  //   Mixed   the factor of ZᵀAZ, and CG while the active set moves (pdas's default);
+  //   CgOnly  CG alone, no factor (the step's solver.linear = "cg": in 3D the factor of
+  //           ZᵀAZ fills, 280 MB of a 1 GB run at 300k unknowns);
+  //   Direct  the factor and its row updates only: every solve exact to round-off, for a
+  //           scheme that differences the reconstructed energies (discrete_gradient: CG's
+  //           tolerance-level error in Ψ(q^{n+1}) made its energy iteration dither).
+  enum class Solves { Mixed, CgOnly, Direct };
   // `multipliers`: use the method of multipliers even where a local basis exists (to
-  // compare the two).  `cg_only`: the local basis's QP solved by pdas's CG alone, no
-  // factor (the step's solver.linear = "cg": in 3D the factor of ZᵀAZ fills, 280 MB of
-  // a 1 GB run at 300k unknowns); the multipliers' saddle form keeps its LU.
-  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers, bool cg_only = false);
+  // compare the two).
+  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers, Solves solves = Solves::Mixed);
 
   Method method() const { return method_; }
   bool available() const { return method_ != Method::None; }

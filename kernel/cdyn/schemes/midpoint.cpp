@@ -45,7 +45,9 @@ class Midpoint final : public StepQPScheme {
       : StepQPScheme(p, solver, dt, constraint_at_end ? 0.5 : 1.0, constraint_at_end ? 2.0 : 4.0, parameters.condense,
                      parameters.damping, constraint_at_end ? 1.0 : 2.0, parameters.tol),
         at_end_(constraint_at_end) {
-    full_step_.emplace(p, parameters.tol, false, parameters.reconstruct_by_cg);
+    full_step_.emplace(p, parameters.tol, false,
+                       parameters.reconstruct_by_cg ? FullStepReconstruction::Solves::CgOnly
+                                                    : FullStepReconstruction::Solves::Mixed);
     if (!full_step_->available() || (full_step_->needed() && !parameters.reconstruct)) full_step_.reset();
     // Friction: eq. (14) has no friction term, so a reconstructed massless part would
     // slide freely; only a mass with no massless mode (Ker M = {0}: nothing to
