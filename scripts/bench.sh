@@ -17,47 +17,51 @@ PY=/usr/bin/python3
 export OMP_NUM_THREADS=1
 export OPENBLAS_NUM_THREADS=1
 mkdir -p "$OUT"
+START=$(date +%s)
+# A section header with the seconds since the start (the sections' own durations).
+section() { echo "== $1 [+$(( $(date +%s) - START )) s]"; }
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "== (a) contact overhead, membrane P1+/P0 midpoint n = 160 and 80, steps 211-310"
+section "(a) contact overhead, membrane P1+/P0 midpoint n = 160 and 80, steps 211-310"
 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1' \
     --benchmark_enable_random_interleaving=true
 CDYN_BENCH_N=80 "$BUILD/bench/bench_contact_step" --benchmark_counters_tabular=true --benchmark_filter='condense:1' \
     --benchmark_enable_random_interleaving=true
-echo "== (b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, the impact window: steps 241-300, n = 40, 80, 160"
+section "(b) cdyn vs FreeFEM + ff-Ipopt, P1/P1 backward Euler, the impact window: steps 241-300, n = 40, 80, 160"
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer" --n 40,80,160 --steps 300 --first 241
-echo "== (b') the same in resting contact (started on the obstacle): steps 1-100 at n = 40, 80, 1-30 at n = 160"
-$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 100 --resting
+section "(b') the same in resting contact (started on the obstacle): steps 1-50 at n = 40, 80, 1-30 at n = 160"
+$PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 40,80 --steps 50 --resting
 $PY "$ROOT/bench/bench_peer.py" "$BUILD/apps/cdyn" "$OUT/peer_resting" --n 160 --steps 30 --resting
-echo "== (c) scaling n = 40 ... 640: free flight (steps 1-20), then resting contact (started on the obstacle, steps 1-30)"
+section "(c) scaling n = 40 ... 640: free flight (steps 1-20), then resting contact (started on the obstacle, steps 1-30)"
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling" --steps 20 --no-wellposed
 $PY "$ROOT/bench/bench_scaling.py" "$BUILD/apps/cdyn" "$OUT/scaling_resting" --steps 30 --resting --no-wellposed
-echo "== (d) solver table on the same steps"
+section "(d) solver table on the same steps"
 "$BUILD/bench/bench_step_solvers" --benchmark_counters_tabular=true
-echo "== (e) speed against error (cdyn study)"
+section "(e) speed against error (cdyn study)"
 "$BUILD/apps/cdyn" study "$ROOT/data/scenes/membrane.toml" --vary method.pair=P1+/P0,P1/P1 \
     --vary time.scheme=midpoint,backward_euler --vary mesh.n=10,20,40 --vary time.dt=0.004,0.002,0.001 \
     --out "$OUT/study_membrane"
 "$BUILD/apps/cdyn" study "$ROOT/data/scenes/bar.toml" --vary method.pair=P1+/P0,P1/P1,P1/P0 \
     --vary time.scheme=midpoint,backward_euler --vary mesh.n=20,40,80,160 --vary time.dt=0.02,0.01,0.005 \
     --out "$OUT/study_bar"
-echo "== (g) the published table: extrapolated, reconstructed and discrete_gradient full steps"
+section "(g) the published table: extrapolated, reconstructed and discrete_gradient full steps"
 $PY "$ROOT/bench/bench_published_table.py" "$BUILD/apps/cdyn" "$OUT/published"
-echo "== (h) contact in every regime: impact, resting, chatter, disk, beam (P1+/P0 midpoint, P1/P1 backward Euler), about 4 minutes"
+section "(h) contact in every regime: impact, resting, chatter, disk, beam (P1+/P0 midpoint, P1/P1 backward Euler), about 1.5 minutes"
 $PY "$ROOT/bench/bench_regimes.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/regimes" --repeat 2
-echo "== (j) friction: the frictional contact step against the frictionless one, disk and ramp, backward Euler"
+section "(j) friction: the frictional contact step against the frictionless one, disk and ramp, backward Euler"
 $PY "$ROOT/bench/bench_friction.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/friction" --repeat 2
-echo "== (f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 1.5 minutes"
+section "(f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ... 577 (1M dofs), about 1.5 minutes"
 CDYN_BENCH_N=40,80,160,320,577 "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
-echo "== (i) the machine's ceiling for two threads: STREAM triad and the threaded S x, 1 and 2 threads"
+section "(i) the machine's ceiling for two threads: STREAM triad and the threaded S x, 1 and 2 threads"
 "$BUILD/bench/bench_bandwidth" --benchmark_enable_random_interleaving=true
-echo "== (i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 3.5 minutes"
+section "(i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 3.5 minutes"
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
-echo "== (k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 16"
+section "(k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 16"
 # (the factor at n = 24, 1 more minute: --linear factor --sizes 24; at n = 32, 3.5 more minutes)
 $PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16,24,32 --linear cg
 $PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --sizes 8,16 --linear factor
 if [ -f "$BUILD/kernel/libcdyn_petsc.so" ]; then
-  echo "== (l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 2.5 minutes"
+  section "(l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 2.5 minutes"
   $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 16,32 --pcs jacobi --native cg --log
 fi
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "== total: $(( $(date +%s) - START )) s"
