@@ -59,9 +59,10 @@ class FullStepReconstruction {
   //   Mixed   the factor of ZᵀAZ, and CG while the active set moves (pdas's default);
   //   CgOnly  CG alone, no factor (the step's solver.linear = "cg": in 3D the factor of
   //           ZᵀAZ fills, 280 MB of a 1 GB run at 300k unknowns);
-  //   Direct  the factor and its row updates only: every solve exact to round-off, for a
-  //           scheme that differences the reconstructed energies (discrete_gradient: CG's
-  //           tolerance-level error in Ψ(q^{n+1}) made its energy iteration dither).
+  //   Direct  the factor and its row updates only, every solve exact to round-off: for a
+  //           scheme that reconstructs nearly the same state several times a step with
+  //           the active set of the last (discrete_gradient's energy iteration), where a
+  //           solve with the factor brought to that set costs less than CG's pair.
   enum class Solves { Mixed, CgOnly, Direct };
   // `multipliers`: use the method of multipliers even where a local basis exists (to
   // compare the two).
