@@ -194,11 +194,19 @@ int ExplicitReducedSystem::update_limit() const {
 // mean flops so far: under half their flops (the analysis's count; the margin because a
 // refactorization also copies the analysis and rebuilds the supernodes: at n = 80 on the
 // membrane without CG, refactorizations chosen at 1.3× fewer flops made the steps 8 %
-// slower).  On
-// a small or nearly banded S — the thin beam's 404 unknowns: 1.4e4 flops a
+// slower).  On a small or nearly banded S — the thin beam's 404 unknowns: 1.4e4 flops a
 // factorization — it is the cheaper way at any number of changes.
 bool ExplicitReducedSystem::refactorization_pays(int changes) const {
   return updates_measured_ > 0 && 2.0 * chol_.factorization_flops() < changes * (update_flops_ / updates_measured_);
+}
+
+// Whether bringing the factor (S̃'s, not a free block's) to a set `changes` unknowns away
+// is priced as a refactorization rather than as that many row updates: beyond
+// update_limit(), where a refactorization pays, and before any row update is measured
+// (then a refactorization's count stands in for them).  (sync_factor itself does row
+// updates in that last case, to measure them.)  For cg_pays and resync_pays.
+bool ExplicitReducedSystem::priced_as_refactorization(int changes) const {
+  return changes > update_limit() || updates_measured_ == 0 || refactorization_pays(changes);
 }
 
 // Whether the factor should now be brought to `held` although CG would do: when the
@@ -231,15 +239,14 @@ bool ExplicitReducedSystem::resync_pays(const HeldSet& held) const {
     changes += held[i] != factor_held_[i];
     n_free += !held[i];
   }
-  // What sync_factor(held) will do, and the solves it leaves (before any row update is
-  // measured, a refactorization's count stands in for them, as in cg_pays).  A new free
-  // block's flops are estimated from S's: a fraction f of the unknowns of a 2D-like
-  // graph, f^1.5 of the factorization (nested dissection's N^1.5) and f of the solve.
+  // What sync_factor(held) will do, and the solves it leaves.  A new free block's flops
+  // are estimated from S's: a fraction f of the unknowns of a 2D-like graph, f^1.5 of
+  // the factorization (nested dissection's N^1.5) and f of the solve.
   double sync = 0.0, solve = chol_.solve_flops();
   if (block_mode_) {
     sync = block_chol_.factorization_flops();
     solve = block_chol_.solve_flops();
-  } else if (changes > update_limit() || refactorization_pays(changes) || updates_measured_ == 0) {
+  } else if (priced_as_refactorization(changes)) {
     const double f = double(n_free) / n_;
     const bool block = n_free <= opt_.pdas_free_block * n_;
     sync = chol_.factorization_flops() * (block ? std::pow(f, 1.5) : 1.0);
@@ -293,9 +300,8 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   // With the factor of S_II the alternative is a new one (of about the same size).
   if (block_mode_) return block_chol_.factorization_flops() > cg_flops;
   if (counters_.cg_solves == 0) return true;  // CG's own cost measured first
-  double sync_flops = chol_.factorization_flops();
-  if (changes <= update_limit() && updates_measured_ > 0 && !refactorization_pays(changes))
-    sync_flops = changes * (update_flops_ / updates_measured_);
+  const double sync_flops = priced_as_refactorization(changes) ? chol_.factorization_flops()
+                                                                : changes * (update_flops_ / updates_measured_);
   return sync_flops > cg_flops;
 }
 

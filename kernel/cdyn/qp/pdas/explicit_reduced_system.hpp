@@ -73,6 +73,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   void sync_factor(const HeldSet& held);
   int update_limit() const;
   bool refactorization_pays(int changes) const;
+  bool priced_as_refactorization(int changes) const;
   bool resync_due(const HeldSet& held) const;
   bool resync_pays(const HeldSet& held) const;
   bool cg_pays(const HeldSet& held) const;
