@@ -104,6 +104,8 @@ def main():
     os.makedirs(a.work, exist_ok=True)
     print(f"load average at start: {os.getloadavg()[0]:.2f}")
     first = a.first if a.first is not None else (1 if a.resting else 241)
+    if not 1 <= first <= a.steps:
+        ap.error(f"--first {first}: the window must start at a step in 1 … --steps ({a.steps})")
     print(f"window: steps {first}-{a.steps}")
     print("| n | unknowns | window | contact steps | FreeFEM+Ipopt s/step (Ipopt part) | cdyn P1/P1 s/step | "
           "cdyn consistent s/step | ratio FreeFEM/cdyn (P1/P1, consistent) | max |dJ|/J0 |")
