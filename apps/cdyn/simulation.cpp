@@ -254,17 +254,21 @@ std::unique_ptr<StepSolver> make_solver(const SceneSpec::Solver& v) {
   return make_step_solver(v.name, v.options);
 }
 
-// What the PETSc back end takes (docs/distributed.md): an explicit step matrix and no
-// friction; and what a run under mpirun takes: that back end.
+// What the PETSc back end takes (docs/distributed.md): in saddle form pdas alone, and
+// no snesvi with friction; and what a run under mpirun takes: that back end.
 void check_backend(const Simulation& sim) {
   const SceneSpec::Solver& v = sim.spec.solver;
   if (v.backend == "native" && petsc::launched_in_parallel())
     throw InputError("solver.backend: \"native\" runs on one process; under mpirun with more than one, set "
                      "solver.backend = \"petsc\"");
   if (v.backend != "petsc") return;
-  if (!sparse_mass(*sim.problem.mass))
-    throw InputError("solver.backend: the petsc back end needs an explicit step matrix; with " + sim.pair +
-                     " the step is in saddle form (H^h continuous): use solver.backend = \"native\"");
+  // (in saddle form the back end's pdas factorizes each reduced saddle system by MUMPS)
+  if (!sparse_mass(*sim.problem.mass) && v.name != "pdas")
+    throw InputError("solver.name: with " + sim.pair + " the step is in saddle form (H^h continuous), which the "
+                     "petsc back end solves by pdas only (" + v.name + " needs an explicit step matrix)");
+  if (!sparse_mass(*sim.problem.mass) && !v.pc.empty())
+    throw InputError("solver.pc: with " + sim.pair + " the step is in saddle form (H^h continuous), solved by "
+                     "MUMPS's factorization on the petsc back end: no preconditioner");
   // (measured: with friction's inner QPs SNESVI leaves its pdas finish a CG that
   // diverges at the first steps, in the plane and in space; pdas and TAO run)
   if (!sim.problem.friction.empty() && v.name == "snesvi")

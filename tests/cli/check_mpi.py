@@ -3,16 +3,17 @@
 
 Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
 
- 1. The seed's membrane through its impact, the elastic disk's impact and the prism in
-    space (P1+/P0 midpoint, tol = 1e-12), and the blocks sliding with Coulomb friction in
-    the plane and in space (backward Euler): the PETSc back end on one process and on two
-    gives the native run's history — energies, friction work, active counts, probes —
-    to 1e-9 of each column's largest value; summary.json says `backend` and `ranks`.
+ 1. The seed's membrane through its impact (P1+/P0, and the saddle-form pairs P2/P1 and
+    P1+/P1), the elastic disk's impact and the prism in space (tol = 1e-12), and the
+    blocks sliding with Coulomb friction in the plane and in space (backward Euler): the
+    PETSc back end on one process and on two gives the native run's history —
+    energies, friction work, active counts, probes — to 1e-9 of each column's largest
+    value; summary.json says `backend` and `ranks`.
  2. TAO's TRON and SNESVI on two processes: the same.
  3. Errors: one line from rank 0 and exit status 2 — the native back end under mpirun
-    -n 2, a saddle-form pair, friction with snesvi, solver.pc on the native back end, solver.linear
-    on the petsc one; a step QP that does not converge on two ranks: one line, exit
-    status 3, no rank left waiting.
+    -n 2, a saddle-form pair with TAO or with solver.pc, friction with snesvi, solver.pc
+    on the native back end, solver.linear on the petsc one; a step QP that does not
+    converge on two ranks: one line, exit status 3, no rank left waiting.
 Only the standard library is used.
 """
 import csv
@@ -33,6 +34,9 @@ SCENES = {
     "membrane": ["", "time.T=0.3"],
     "disk": [os.path.join(src, "data/scenes/disk.toml"), "time.T=2e-3"],
     "prism_3d": [os.path.join(src, "data/scenes/prism_3d.toml"), "time.T=1.5"],
+    # saddle form (H^h continuous): the reduced saddle systems by MUMPS on the ranks
+    "membrane_P2P1": ["", "time.T=0.3", "method.pair=P2/P1"],
+    "membrane_P1bP1": ["", "time.T=0.3", "method.pair=P1+/P1"],
     # with Coulomb friction: the semismooth Newton loop on rank 0 around the distributed pdas
     "incline_block": [os.path.join(src, "data/scenes/incline_block.toml"), "time.T=0.05"],
     "incline_block_3d": [os.path.join(src, "data/scenes/incline_block_3d.toml"), "time.T=0.03"],
@@ -97,7 +101,10 @@ for name in ("tao_tron", "snesvi"):
 
 ERRORS = {
     "the native back end under mpirun -n 2": ("", [], "solver.backend"),
-    "a saddle-form pair": ("", ["solver.backend=petsc", "method.pair=P2/P1"], "solver.backend"),
+    "a saddle-form pair with tao_tron": ("", ["solver.backend=petsc", "method.pair=P2/P1", "solver.name=tao_tron"],
+                                         "solver.name"),
+    "a saddle-form pair with solver.pc": ("", ["solver.backend=petsc", "method.pair=P1+/P1", "solver.pc=jacobi"],
+                                          "solver.pc"),
     "solver.pc on the native back end": ("", ["solver.pc=jacobi"], "solver.pc"),
     "friction with snesvi": (os.path.join(src, "data/scenes/incline_block.toml"),
                              ["solver.backend=petsc", "solver.name=snesvi"], "solver.name"),

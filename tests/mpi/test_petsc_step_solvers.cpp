@@ -7,7 +7,8 @@
 // mass over dt²), a load pushing down onto a bowl-shaped obstacle, so that about a third
 // of the unknowns rest on it; every solver must return the native pdas's solution to
 // within the KKT tolerance's effect (‖ΔX‖∞ ≤ 1e-8 ‖X‖∞ at tol = 1e-12) with a KKT
-// residual ≤ tol measured by the kernel's one measure (qp/kkt.hpp).
+// residual ≤ tol measured by the kernel's one measure (qp/kkt.hpp).  The same problem in
+// saddle form (the pairs whose velocity space is continuous) against the native pdas.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -128,15 +129,70 @@ TEST(PetscStepSolvers, IndefiniteMatrixIsANumericalFailure) {
   expect_same(distributed("pdas")->solve(ok), native(ok), ok, "after the failure");
 }
 
+// The obstacle QP in saddle form (qp/bound_qp.hpp): A the Laplacian, C a mass matrix's
+// kind (the 5-point pattern, h² on the diagonal and h²/8 off it: SPD), B = C, c = 4, so
+// S = A + c Bᵀ C⁻¹ B = A + c C; the bounds and the load are obstacle_qp's.
+BoundQP saddle_obstacle_qp(int m, bool upper_bounds = false) {
+  BoundQP qp = obstacle_qp(m, 1.0, upper_bounds);
+  const double h = 1.0 / (m + 1);
+  SaddleForm f;
+  f.A = qp.S;
+  f.A.diagonal().setConstant(4.0);
+  f.C = qp.S;
+  for (int j = 0; j < f.C.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(f.C, j); it; ++it) it.valueRef() = (it.row() == j ? 1.0 : 0.125) * h * h;
+  f.B = f.C;
+  f.c = 4.0;
+  qp.saddle = f;
+  qp.S.resize(0, 0);
+  return qp;
+}
+
+// In saddle form the distributed pdas factorizes each reduced saddle system by MUMPS;
+// it must return the native pdas's solution (whose LU is UMFPACK's), with lower and
+// upper bounds, and take one solve from a warm start at the solution.
+TEST(PetscStepSolvers, SaddleFormGivesTheNativeSolution) {
+  for (const bool upper_bounds : {false, true}) {
+    const BoundQP qp = saddle_obstacle_qp(24, upper_bounds);
+    const QPResult want = native(qp);
+    ASSERT_GT(want.active.size(), 60u);
+    auto solver = distributed("pdas");
+    const QPResult first = solver->solve(qp);
+    expect_same(first, want, qp, upper_bounds ? "saddle, upper bounds" : "saddle");
+    const QPResult warm = solver->solve(qp, &first);
+    expect_same(warm, want, qp, "saddle, warm");
+    EXPECT_EQ(warm.iterations, 1);
+  }
+}
+
+// S = A + c Bᵀ C⁻¹ B indefinite (A's eigenvalues 3 and −1, c C⁻¹ = 0.1 I): the saddle
+// matrix's inertia shows it, a NumericalError, and the ranks go on serving.
+TEST(PetscStepSolvers, IndefiniteSaddleFormIsANumericalFailure) {
+  BoundQP qp;
+  SaddleForm f;
+  std::vector<Eigen::Triplet<double>> t{{0, 0, 1.0}, {0, 1, 2.0}, {1, 0, 2.0}, {1, 1, 1.0}};
+  f.A.resize(2, 2);
+  f.A.setFromTriplets(t.begin(), t.end());
+  f.B = SparseMatrix(2, 2);
+  f.B.setIdentity();
+  f.C = f.B;
+  f.c = 0.1;
+  qp.saddle = f;
+  qp.r = Eigen::Vector2d(1.0, -1.0);
+  qp.lower = Eigen::Vector2d::Constant(-INFINITY);
+  qp.upper = Eigen::Vector2d::Constant(INFINITY);
+  EXPECT_THROW(distributed("pdas")->solve(qp), NumericalError);
+  const BoundQP ok = saddle_obstacle_qp(10);
+  expect_same(distributed("pdas")->solve(ok), native(ok), ok, "after the failure");
+}
+
 TEST(PetscStepSolvers, RefusesWhatItCannotTake) {
   EXPECT_THROW(distributed("ipopt"), InputError);
   EXPECT_THROW(distributed("pdas", "ilu"), InputError);
   EXPECT_THROW(distributed("tao_tron", "gamg"), InputError);  // systems of changing size
-  BoundQP saddle = obstacle_qp(4);
-  saddle.saddle = SaddleForm{};
-  saddle.saddle->A = saddle.S;
-  saddle.S.resize(0, 0);
-  EXPECT_THROW(distributed("pdas")->solve(saddle), InputError);
+  const BoundQP saddle = saddle_obstacle_qp(4);
+  EXPECT_THROW(distributed("tao_tron")->solve(saddle), InputError);  // needs S explicitly
+  EXPECT_THROW(distributed("pdas", "jacobi")->solve(saddle), InputError);  // a factorization: no pc
 }
 
 }  // namespace

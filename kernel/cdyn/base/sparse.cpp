@@ -1,8 +1,9 @@
-// sparse.cpp — comparing two compressed sparse matrices.
+// sparse.cpp — comparing two compressed sparse matrices; the symmetric saddle matrix.
 #include "cdyn/base/sparse.hpp"
 
 #include <algorithm>
 #include <cstring>
+#include <vector>
 
 namespace cdyn {
 
@@ -35,6 +36,26 @@ bool same_matrix(const SparseMatrix& a, const SparseMatrix& b, bool values) {
   if (!same_bytes(a.outerIndexPtr(), b.outerIndexPtr(), sizeof(int) * (a.outerSize() + 1))) return false;
   if (!same_bytes(a.innerIndexPtr(), b.innerIndexPtr(), sizeof(int) * nnz)) return false;
   return !values || same_bytes(a.valuePtr(), b.valuePtr(), sizeof(double) * nnz);
+}
+
+SparseMatrix symmetric_saddle_matrix(const SaddleForm& f) {
+  const int n = static_cast<int>(f.A.cols()), m = static_cast<int>(f.C.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(f.A.nonZeros() + 2 * f.B.nonZeros() + f.C.nonZeros() + n);
+  for (int j = 0; j < n; ++j) t.emplace_back(j, j, 0.0);  // a stored diagonal for the identity rows
+  for (int j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(f.A, j); it; ++it) t.emplace_back(it.row(), j, it.value());
+  for (int j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(f.B, j); it; ++it) {
+      t.emplace_back(n + it.row(), j, f.c * it.value());  // c B
+      t.emplace_back(j, n + it.row(), f.c * it.value());  // c Bᵀ
+    }
+  for (int j = 0; j < m; ++j)
+    for (SparseMatrix::InnerIterator it(f.C, j); it; ++it) t.emplace_back(n + it.row(), n + j, -f.c * it.value());
+  SparseMatrix K(n + m, n + m);
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  return K;
 }
 
 }  // namespace cdyn

@@ -27,4 +27,11 @@ struct SaddleForm {
 // same values, bit for bit).
 bool same_matrix(const SparseMatrix& a, const SparseMatrix& b, bool values = true);
 
+// The saddle matrix with its second block row scaled by c, so that it is symmetric:
+//     K = [[A, c Bᵀ], [c B, −c C]],   K [X; Z] = [r; 0]  ⇔  S X = r,  Z = C⁻¹ B X,
+// with every diagonal entry stored (a held unknown's row becomes the identity's in K's
+// pattern).  Symmetric indefinite: N_W positive and N_H negative eigenvalues when S and
+// C are positive definite (Sylvester's law on its block LDLᵀ).
+SparseMatrix symmetric_saddle_matrix(const SaddleForm& f);
+
 }  // namespace cdyn

@@ -15,8 +15,20 @@
 // max_i |λ_i| / D_i over max(‖X‖∞, ‖D⁻¹r‖∞) (qp/kkt.hpp); CG's unpreconditioned
 // residual ‖b − S̃X‖₂ ≥ max_i |λ_i| bounds it by ‖·‖₂ / (min_i D_i ‖D⁻¹r‖∞), so CG
 // runs to a hundredth of tol in that measure and the KKT test on rank 0 passes.
+//
+// Saddle form (the pairs whose velocity space is continuous, qp/bound_qp.hpp): the
+// unknowns are [X; Z] and the matrix K = [[A, c Bᵀ], [c B, −c C]] (base/sparse.hpp), Z
+// unbounded, so the held rows are X's only and the same elimination gives K̃ = K with
+// A's rows and columns the identity's.  K̃ is indefinite — CG does not apply — and is
+// solved as the serial pdas solves it (UMFPACK's LU, qp/pdas/saddle_reduced_system.hpp):
+// by a sparse direct factorization, MUMPS's parallel LDLᵀ (symbolic analysis once, a
+// numeric factorization per held set).  Its inertia checks what CG's Ritz values check
+// for an explicit S: K̃ has exactly m negative eigenvalues iff S̃ and C are positive
+// definite (Sylvester's law on K̃'s block LDLᵀ).  The rule's D is the kernel's scaling
+// diag(A) + c Σ_k B_kj² / C_kk (qp/kkt.hpp), sent with K.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "cdyn/base/error.hpp"
@@ -86,6 +98,112 @@ bool positive_ritz_values(KSP ksp) {
   return true;
 }
 
+// K̃'s factor by MUMPS (LDLᵀ of a symmetric indefinite matrix); ICNTL(13) = 1 keeps the
+// root front off ScaLAPACK so that the factor's inertia counts every rank's pivots.  One
+// step of iterative refinement (Richardson's iteration on the factor, two applications),
+// as the serial pdas makes with UMFPACK: without it the membrane's P2/P1 step differed
+// from the serial one by 2e-15 at the first step and its velocity at the impact by 3e-7
+// of its largest value; with it, by 7e-11 (measured on the membrane, tol = 1e-12).
+void configure_direct(KSP ksp, Mat K) {
+  PC pc = nullptr;
+  Mat F = nullptr;
+  check(KSPSetOptionsPrefix(ksp, "cdyn_"), "KSPSetOptionsPrefix");  // before the factor takes it
+  check(KSPSetType(ksp, KSPRICHARDSON), "KSPSetType");
+  check(KSPSetNormType(ksp, KSP_NORM_NONE), "KSPSetNormType");
+  check(KSPSetTolerances(ksp, 0.0, 0.0, PETSC_DEFAULT, 2), "KSPSetTolerances");
+  check(KSPSetOperators(ksp, K, K), "KSPSetOperators");
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+  check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+  check(MatMumpsSetIcntl(F, 13, 1), "MatMumpsSetIcntl");
+  check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+}
+
+// MUMPS's error code and its detail (INFOG(1), INFOG(2): its user's guide, chapter 8).
+std::string mumps_status(KSP ksp) {
+  PC pc = nullptr;
+  Mat F = nullptr;
+  PetscInt info1 = 0, info2 = 0;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+  check(MatMumpsGetInfog(F, 1, &info1), "MatMumpsGetInfog");
+  check(MatMumpsGetInfog(F, 2, &info2), "MatMumpsGetInfog");
+  return "INFOG(1) = " + std::to_string(info1) + ", INFOG(2) = " + std::to_string(info2) +
+         (info1 == -10 ? ": numerically singular" : "");
+}
+
+// The number of negative pivots of the factorized K̃ (a global count; a zero pivot fails
+// the factorization itself).
+PetscInt negative_eigenvalues(KSP ksp) {
+  PC pc = nullptr;
+  Mat F = nullptr;
+  PetscInt negative = 0;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+  check(MatGetInertia(F, &negative, nullptr, nullptr), "MatGetInertia");
+  return negative;
+}
+
+// K̃ X = b̃ in saddle form, X_A already at its bounds.  K̃ is factorized again only when
+// the held set differs from the one factorized — a step without a change of contact
+// costs forward and back solves, as with the serial pdas's LU (measured on the P1+/P1
+// membrane, n = 80: refactorizing at every iteration made the run 5.7 times the serial
+// one's time).  b̃ = r − K X_A on the free rows and the Z rows, X_A on the held ones.
+// Returns the failure, empty on success.
+std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held, const std::vector<PetscInt>& rows,
+                         Vec b, int saddle_rows) {
+  double differs = q.factor && q.factored_held.size() == held.size() ? 0.0 : 1.0;
+  for (std::size_t i = 0; differs == 0.0 && i < held.size(); ++i) differs += held[i] != q.factored_held[i];
+  const bool refactor = global_max(differs) > 0.0;
+  if (!q.factor) {
+    check(MatDuplicate(q.S, MAT_COPY_VALUES, &q.K_held), "MatDuplicate");
+    check(KSPCreate(PETSC_COMM_WORLD, &q.factor), "KSPCreate");
+    configure_direct(q.factor, q.K_held);
+  }
+  if (refactor) {
+    check(MatCopy(q.S, q.K_held, SAME_NONZERO_PATTERN), "MatCopy");
+    check(MatZeroRowsColumns(q.K_held, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, nullptr, nullptr),
+          "MatZeroRowsColumns");
+    check(KSPSetOperators(q.factor, q.K_held, q.K_held), "KSPSetOperators");
+    q.factored_held = held;
+  }
+  // X_A: X on the held rows, 0 elsewhere
+  Vec X_held = nullptr;
+  check(VecDuplicate(q.X, &X_held), "VecDuplicate");
+  {
+    const PetscScalar* x = nullptr;
+    PetscScalar* xa = nullptr;
+    VecGetArrayRead(q.X, &x), VecGetArray(X_held, &xa);
+    for (std::size_t i = 0; i < held.size(); ++i) xa[i] = held[i] != 0 ? x[i] : 0.0;
+    VecRestoreArrayRead(q.X, &x), VecRestoreArray(X_held, &xa);
+  }
+  check(MatMult(q.S, X_held, b), "MatMult");
+  check(VecAYPX(b, -1.0, q.r), "VecAYPX");  // r − K X_A
+  {
+    const PetscScalar* xa = nullptr;
+    PetscScalar* bb = nullptr;
+    VecGetArrayRead(X_held, &xa), VecGetArray(b, &bb);
+    for (std::size_t i = 0; i < held.size(); ++i)
+      if (held[i] != 0) bb[i] = xa[i];
+    VecRestoreArrayRead(X_held, &xa), VecRestoreArray(b, &bb);
+  }
+  VecDestroy(&X_held);
+  check(KSPSolve(q.factor, b, q.X), "KSPSolve");
+  KSPConvergedReason reason;
+  check(KSPGetConvergedReason(q.factor, &reason), "KSPGetConvergedReason");
+  std::string failure;
+  if (reason < 0)
+    failure = "MUMPS's factorization of the reduced saddle system failed (" + mumps_status(q.factor) + ")";
+  else if (refactor && negative_eigenvalues(q.factor) != saddle_rows)
+    failure = "S or C is not positive definite (the saddle matrix's inertia: " +
+              std::to_string(negative_eigenvalues(q.factor)) + " negative eigenvalues for " +
+              std::to_string(saddle_rows) + " rows of C)";
+  if (!failure.empty()) q.factored_held.clear();  // factorize again at the next solve
+  return failure;
+}
+
 }  // namespace
 
 int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm) {
@@ -95,22 +213,26 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   KSP ksp = nullptr;
   check(VecDuplicate(q.r, &D), "VecDuplicate");
   check(VecDuplicate(q.r, &b), "VecDuplicate");
-  check(MatGetDiagonal(q.S, D), "MatGetDiagonal");
+  const bool saddle = settings.saddle_rows > 0;
+  if (saddle) check(VecCopy(q.D, D), "VecCopy");
+  else check(MatGetDiagonal(q.S, D), "MatGetDiagonal");
   PetscReal min_d = 0.0;
   check(VecMin(D, nullptr, &min_d), "VecMin");
-  if (!(min_d > 0)) throw NumericalError("petsc pdas: S has a diagonal entry ≤ 0 (not positive definite)");
+  if (!(min_d > 0)) throw NumericalError("S has a diagonal entry ≤ 0 (not positive definite)");
   const double atol = 1e-2 * settings.tol * min_d * solution_scale(q, D);
   project_on_box(q);
   if (!warm) update_reaction(q);
 
-  check(MatDuplicate(q.S, MAT_COPY_VALUES, &S_held), "MatDuplicate");
-  check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
-  check(KSPSetType(ksp, KSPCG), "KSPSetType");
-  configure_krylov(ksp, settings.pc, /*fixed_size=*/true);
-  check(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
-  check(KSPSetTolerances(ksp, 1e-300, atol, PETSC_DEFAULT, 10000), "KSPSetTolerances");
-  check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
-  check(KSPSetComputeEigenvalues(ksp, PETSC_TRUE), "KSPSetComputeEigenvalues");
+  if (!saddle) {
+    check(MatDuplicate(q.S, MAT_COPY_VALUES, &S_held), "MatDuplicate");
+    check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
+    check(KSPSetType(ksp, KSPCG), "KSPSetType");
+    configure_krylov(ksp, settings.pc, /*fixed_size=*/true);
+    check(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    check(KSPSetTolerances(ksp, 1e-300, atol, PETSC_DEFAULT, 10000), "KSPSetTolerances");
+    check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "KSPSetInitialGuessNonzero");
+    check(KSPSetComputeEigenvalues(ksp, PETSC_TRUE), "KSPSetComputeEigenvalues");
+  }
 
   std::vector<signed char> held_before;
   std::vector<PetscInt> rows;
@@ -141,6 +263,12 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
       update_reaction(q);
       continue;
     }
+    if (saddle) {
+      failure = solve_saddle(q, held, rows, b, settings.saddle_rows);
+      if (!failure.empty()) break;
+      update_reaction(q);
+      continue;
+    }
     check(MatCopy(q.S, S_held, SAME_NONZERO_PATTERN), "MatCopy");
     check(VecCopy(q.r, b), "VecCopy");
     check(MatZeroRowsColumns(S_held, static_cast<PetscInt>(rows.size()), rows.data(), 1.0, q.X, b),
@@ -167,7 +295,7 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   VecDestroy(&D);
   VecDestroy(&b);
   // (the same on every rank: the reason and the held-set test are global)
-  if (!failure.empty()) throw NumericalError("petsc pdas: " + failure);
+  if (!failure.empty()) throw NumericalError(failure);
   return iterations;
 }
 

@@ -85,12 +85,14 @@ MatrixOwner& matrix_owner() {
   return owner;
 }
 
-void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QPResult* warm) {
+void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QPResult* warm,
+                            const Eigen::VectorXd* D_saddle) {
   MPI_Bcast(&settings, sizeof settings, MPI_BYTE, 0, world());
   const std::vector<int> first_row = row_ranges(settings.n);
   const int me = comm_rank(), p = static_cast<int>(first_row.size()) - 1;
   const int local = first_row[me + 1] - first_row[me];
-  if (settings.matrix_changed || settings.n != n) {
+  const bool new_matrix = settings.matrix_changed || settings.n != n;
+  if (new_matrix) {
     clear();
     n = settings.n;
     // The rows of S: per-row counts, then column indices and values by blocks.
@@ -118,7 +120,8 @@ void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QP
           "MatCreateMPIAIJWithArrays");
     partition(S_natural);
     check(MatSetOption(S, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-    check(MatSetOption(S, MAT_SPD, PETSC_TRUE), "MatSetOption");
+    // (the saddle matrix is indefinite: MUMPS must not take it for SPD)
+    if (settings.saddle_rows == 0) check(MatSetOption(S, MAT_SPD, PETSC_TRUE), "MatSetOption");
     PetscInt mine = 0;
     check(MatGetLocalSize(S, &mine, nullptr), "MatGetLocalSize");
     check(MatGetOwnershipRange(S, &first, &last), "MatGetOwnershipRange");
@@ -126,6 +129,7 @@ void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QP
     X = new_vector(mine, n), reaction = new_vector(mine, n);
     natural = new_vector(local, n);
     check(VecScatterCreate(natural, rows, r, nullptr, &to_rows), "VecScatterCreate");
+    if (settings.saddle_rows > 0) D = new_vector(mine, n);
   }
   // rank 0's vector → the natural blocks → this rank's partitioned rows
   auto distribute = [&](const Eigen::VectorXd* v, Vec x) {
@@ -133,6 +137,7 @@ void DistributedQP::receive(SolveSettings& settings, const BoundQP* qp, const QP
     check(VecScatterBegin(to_rows, natural, x, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
     check(VecScatterEnd(to_rows, natural, x, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
   };
+  if (new_matrix && settings.saddle_rows > 0) distribute(D_saddle, D);
   distribute(qp ? &qp->r : nullptr, r);
   distribute(qp ? &qp->lower : nullptr, lower);
   distribute(qp ? &qp->upper : nullptr, upper);
@@ -191,7 +196,11 @@ Eigen::VectorXd DistributedQP::gather_solution() const {
 void DistributedQP::clear() {
   if (S) MatDestroy(&S);
   S = nullptr;
-  for (Vec* v : {&r, &lower, &upper, &X, &reaction, &natural}) destroy(*v);
+  for (Vec* v : {&r, &lower, &upper, &X, &reaction, &D, &natural}) destroy(*v);
+  if (factor) KSPDestroy(&factor);
+  if (K_held) MatDestroy(&K_held);
+  factor = nullptr, K_held = nullptr;
+  factored_held.clear();
   if (to_rows) VecScatterDestroy(&to_rows);
   if (rows) ISDestroy(&rows);
   to_rows = nullptr, rows = nullptr;

@@ -18,6 +18,7 @@
 #include <petscksp.h>
 
 #include <string>
+#include <vector>
 
 #include "cdyn/qp/bound_qp.hpp"
 
@@ -38,7 +39,8 @@ enum class Preconditioner : int { gamg = 0, hypre, jacobi };
 
 // Everything a solve needs besides the data, the same on every rank.
 struct SolveSettings {
-  int n = 0;                  // unknowns
+  int n = 0;                  // rows of the matrix sent: the unknowns, and Z's in saddle form
+  int saddle_rows = 0;        // in saddle form, the m rows of Z (0: S explicit)
   int matrix_changed = 0;     // S is sent (again)
   int warm = 0;               // a warm start X (and its reaction) is sent
   Algorithm algorithm = Algorithm::pdas;
@@ -56,8 +58,11 @@ class DistributedQP {
   ~DistributedQP() { clear(); }
 
   // Collective.  Rank 0 gives the settings (broadcast) and its qp and warm start (the
-  // other ranks pass nullptr and receive theirs).
-  void receive(SolveSettings& settings, const BoundQP* qp, const QPResult* warm);
+  // other ranks pass nullptr and receive theirs).  In saddle form qp is the extended
+  // problem (S the symmetric saddle matrix K of base/sparse.hpp, the Z rows unbounded)
+  // and D the held-set rule's scaling (sent with the matrix; diag(S) otherwise).
+  void receive(SolveSettings& settings, const BoundQP* qp, const QPResult* warm,
+               const Eigen::VectorXd* D = nullptr);
   // Collective: X on rank 0 (empty elsewhere).
   Eigen::VectorXd gather_solution() const;
   // Drops S and every vector (collective when they exist).
@@ -69,8 +74,14 @@ class DistributedQP {
   Vec r = nullptr, lower = nullptr, upper = nullptr;  // ±infinity where unbounded
   Vec X = nullptr;         // the warm start on entry of a solve, the solution on exit
   Vec reaction = nullptr;  // λ = S X − r of the warm start (when settings.warm), else 0
+  Vec D = nullptr;         // in saddle form, the held-set rule's scaling (qp/kkt.hpp)
   PetscInt first = 0, last = 0;
   int n = 0;
+  // In saddle form, K̃'s factor, kept across iterations and steps while the held set is
+  // the one factorized (distributed_pdas.cpp).
+  Mat K_held = nullptr;
+  KSP factor = nullptr;
+  std::vector<signed char> factored_held;
 
  private:
   // S in natural blocks of rows, as scattered, is re-partitioned by PT-Scotch's graph

@@ -3,6 +3,7 @@
 #include "petsc_step_solver.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <utility>
 
 #include "cdyn/base/error.hpp"
@@ -35,24 +36,24 @@ T lookup(const std::vector<std::pair<std::string, T>>& table, const std::string&
 
 class PetscStepSolver : public StepSolver {
  public:
-  PetscStepSolver(std::string name, Algorithm algorithm, Preconditioner pc, const QPOptions& options)
-      : name_(std::move(name)), algorithm_(algorithm), pc_(pc), options_(options) {}
+  PetscStepSolver(std::string name, Algorithm algorithm, Preconditioner pc, bool pc_given, const QPOptions& options)
+      : name_(std::move(name)), algorithm_(algorithm), pc_(pc), pc_given_(pc_given), options_(options) {}
 
   std::string name() const override { return "petsc " + name_; }
 
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
     const auto start = std::chrono::steady_clock::now();
-    if (qp.saddle)
-      throw InputError("solver.backend", "petsc needs the step matrix S explicitly; this pair's step is in saddle form "
-                                         "(H^h continuous: P1+/P1, P2/P1), use solver.backend = \"native\"");
+    if (qp.saddle) refuse_in_saddle_form();
     const bool new_matrix = checked_.check(qp, /*positive_definite=*/false, name());
     if (new_matrix) ++version_;
     form_.set(qp, !new_matrix);
+    const BoundQP& sent = qp.saddle ? extended(qp, new_matrix) : qp;
     // S is sent when this solver's S is new, or another solver's is the one distributed
     MatrixOwner& owner = matrix_owner();
     DistributedQP& q = the_distributed_qp();
     SolveSettings settings;
-    settings.n = qp.size();
+    settings.n = sent.size();
+    settings.saddle_rows = sent.size() - qp.size();
     settings.matrix_changed = !q.has_matrix() || owner.solver != this || owner.version != version_;
     settings.warm = warm_start && warm_start->X.size() == qp.size() && warm_start->reaction.size() == qp.size();
     settings.algorithm = algorithm_;
@@ -65,17 +66,52 @@ class PetscStepSolver : public StepSolver {
     QPResult result;
     std::string failure;
     try {
-      q.receive(settings, &qp, settings.warm ? warm_start : nullptr);
+      const QPResult* warm = !settings.warm ? nullptr : qp.saddle ? extended(*warm_start) : warm_start;
+      q.receive(settings, &sent, warm, &saddle_D_);
       result.iterations = solve_collectively(q, settings);
     } catch (const NumericalError& e) {
       failure = e.what();
     }
-    result.X = q.gather_solution();
+    result.X = q.gather_solution().head(qp.size());
     if (!failure.empty()) throw NumericalError(name() + ": " + failure);
     finish_result(qp, form_, options_.tol, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report_failure(name(), options_, result, "");
     return result;
+  }
+
+  // Saddle form: pdas with a direct solve of the reduced saddle system (distributed_pdas.cpp).
+  void refuse_in_saddle_form() const {
+    if (algorithm_ != Algorithm::pdas)
+      throw InputError("solver", name_ + " needs the step matrix S explicitly; in saddle form (H^h continuous: "
+                                         "P1+/P1, P2/P1) the petsc back end solves by pdas");
+    if (pc_given_)
+      throw InputError("pc", "the petsc pdas solves the saddle form (H^h continuous: P1+/P1, P2/P1) by MUMPS's "
+                             "factorization, which takes no preconditioner");
+  }
+
+  // The saddle-form qp as the distributed pdas takes it: K [X; Z] with Z unbounded
+  // (base/sparse.hpp), and the rule's scaling D; K and D made again with the matrices.
+  const BoundQP& extended(const BoundQP& qp, bool new_matrix) {
+    const int n = qp.size(), m = static_cast<int>(qp.saddle->C.rows());
+    if (new_matrix || saddle_qp_.S.rows() != n + m) {
+      saddle_qp_.S = symmetric_saddle_matrix(*qp.saddle);
+      saddle_D_.resize(n + m);
+      saddle_D_ << form_.diagonal(), Eigen::VectorXd::Ones(m);
+    }
+    saddle_qp_.r.resize(n + m), saddle_qp_.lower.resize(n + m), saddle_qp_.upper.resize(n + m);
+    saddle_qp_.r << qp.r, Eigen::VectorXd::Zero(m);
+    saddle_qp_.lower << qp.lower, Eigen::VectorXd::Constant(m, -INFINITY);
+    saddle_qp_.upper << qp.upper, Eigen::VectorXd::Constant(m, INFINITY);
+    return saddle_qp_;
+  }
+  // A warm start extended by Z = 0 and its reaction by 0 (the rule reads X's rows only).
+  const QPResult* extended(const QPResult& warm) {
+    const int n = static_cast<int>(warm.X.size()), m = static_cast<int>(saddle_qp_.S.rows()) - n;
+    saddle_warm_.X.resize(n + m), saddle_warm_.reaction.resize(n + m);
+    saddle_warm_.X << warm.X, Eigen::VectorXd::Zero(m);
+    saddle_warm_.reaction << warm.reaction, Eigen::VectorXd::Zero(m);
+    return &saddle_warm_;
   }
 
   void clear() override {
@@ -87,8 +123,12 @@ class PetscStepSolver : public StepSolver {
   std::string name_;
   Algorithm algorithm_;
   Preconditioner pc_;
+  bool pc_given_;  // solver.pc set (refused in saddle form)
   QPOptions options_;
   CheckedMatrices checked_;  // input checks once per distinct S
+  BoundQP saddle_qp_;        // in saddle form, the extended problem sent
+  QPResult saddle_warm_;
+  Eigen::VectorXd saddle_D_;
   QuadraticForm form_;
   unsigned long version_ = 0;  // counts this solver's distinct S
 };
@@ -110,7 +150,7 @@ StepSolver* new_petsc_step_solver(const std::string& name, const QPOptions& opti
     throw InputError("pc", "gamg cannot precondition " + name +
                                ", whose systems change size with the free set (use hypre or jacobi)");
   session::start();
-  return new PetscStepSolver(name, algorithm, pc, options);
+  return new PetscStepSolver(name, algorithm, pc, !preconditioner.empty(), options);
 }
 
 }  // namespace cdyn::petsc

@@ -10,8 +10,8 @@
 //   snesvi     SNES's reduced-space active set method for the KKT conditions;
 // the last two families finish with active-set iterations to the common tol.  Every
 // result is measured on rank 0 by the kernel's one KKT residual (qp/kkt.hpp) and a result
-// above tol is a NumericalError, as for the serial solvers.  S must be explicit (the
-// saddle form is InputError).
+// above tol is a NumericalError, as for the serial solvers.  In saddle form (P1+/P1,
+// P2/P1) pdas alone, each reduced saddle system by MUMPS's parallel LDLᵀ.
 #pragma once
 
 #include <string>

@@ -40,22 +40,7 @@ void SaddleReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
       same_matrix(f.C, blocks_.C))
     return;
   blocks_ = f;
-  const int n = n_, m = static_cast<int>(f.C.rows());
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(f.A.nonZeros() + 2 * f.B.nonZeros() + f.C.nonZeros() + n);
-  for (int j = 0; j < n; ++j) t.emplace_back(j, j, 0.0);  // a stored diagonal for the identity rows
-  for (int j = 0; j < n; ++j)
-    for (SparseMatrix::InnerIterator it(f.A, j); it; ++it) t.emplace_back(it.row(), j, it.value());
-  for (int j = 0; j < n; ++j)
-    for (SparseMatrix::InnerIterator it(f.B, j); it; ++it) {
-      t.emplace_back(n + it.row(), j, f.c * it.value());   // c B
-      t.emplace_back(j, n + it.row(), f.c * it.value());   // c Bᵀ
-    }
-  for (int j = 0; j < m; ++j)
-    for (SparseMatrix::InnerIterator it(f.C, j); it; ++it) t.emplace_back(n + it.row(), n + j, -f.c * it.value());
-  SparseMatrix K(n + m, n + m);
-  K.setFromTriplets(t.begin(), t.end());
-  K.makeCompressed();
+  SparseMatrix K = symmetric_saddle_matrix(f);
   const bool same_pattern = same_matrix(K, K_, false) && lu_factorized_;
   K_ = std::move(K);
   K_tilde_ = K_;
