@@ -3,6 +3,7 @@
 QP and what it exchanges (docs/distributed.md, "Measured").
 
 Usage: bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR [--sizes 16,32] [--pcs gamg,jacobi] [--native factor,cg] [--log]
+       bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR --saddle P1+/P1,P2/P1 [--sizes 80]
 
 The scene: data/scenes/cube_3d.toml, the unit cube falling onto a plane (as
 bench_three_d.py: dt = h/2, 16 steps, contact from step 6 on), P1+/P0 midpoint with the
@@ -19,6 +20,11 @@ One thread per process.  With --log, the last size's 2-rank run of the last
 preconditioner runs with PETSc's -log_view (its events are counted in any run; the
 option only prints them), whose summary gives the messages and reductions a step's QP
 makes (the weak-scaling model's inputs): printed after the table.
+
+With --saddle, the pairs whose step is in saddle form instead: the seed's membrane (the
+embedded scene, 300 steps of dt = 0.001 through the impact at step 257), native pdas
+(UMFPACK's LU) against petsc pdas (MUMPS's LDLᵀ) on 1 and 2 ranks, the mean over every
+step.  Not in scripts/bench.sh (about 5 minutes at n = 80): docs/distributed.md's table.
 """
 import argparse
 import csv
@@ -37,9 +43,13 @@ def scene(n):
             "output.probes={}", "output.wellposed=false", "method.pair=P1+/P0", "time.scheme=midpoint"]
 
 
+def membrane(n, pair):
+    return [f"mesh.n={n}", f"method.pair={pair}", "time.T=0.3", "output.wellposed=false"]
+
+
 def run(a, out, ranks, sets, extra_env=None):
-    timed = ["/usr/bin/time", "-f", "peak_kB %M", a.cdyn, "run", a.scene, "--out", out, "--quiet",
-             "--set", "output.fields=false", "--set", "output.plots=false"]
+    timed = ["/usr/bin/time", "-f", "peak_kB %M", a.cdyn, "run"] + ([a.scene] if a.scene else []) + [
+        "--out", out, "--quiet", "--set", "output.fields=false", "--set", "output.plots=false"]
     args = ([a.mpiexec, "--oversubscribe", "-n", str(ranks)] if ranks else []) + timed
     for s in sets:
         args += ["--set", s]
@@ -48,7 +58,7 @@ def run(a, out, ranks, sets, extra_env=None):
     p = subprocess.run(args, check=True, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     peak_kB = max(int(k) for k in re.findall(r"peak_kB (\d+)", p.stderr))
     with open(os.path.join(out, "history.csv")) as f:
-        rows = [r for r in csv.DictReader(f) if WINDOW[0] <= int(r["step"]) <= WINDOW[1]]
+        rows = [r for r in csv.DictReader(f) if a.saddle and int(r["step"]) > 0 or WINDOW[0] <= int(r["step"]) <= WINDOW[1]]
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     mean = lambda key: sum(float(r[key]) for r in rows) / len(rows)  # noqa: E731
@@ -65,7 +75,10 @@ def main():
     ap.add_argument("--pcs", default="gamg,jacobi")
     ap.add_argument("--native", default="factor,cg")
     ap.add_argument("--log", action="store_true")
+    ap.add_argument("--saddle", default="", help="pairs in saddle form, on the membrane (e.g. P1+/P1,P2/P1)")
     a = ap.parse_args()
+    if a.saddle:
+        return saddle_table(a, [int(s) for s in (a.sizes if a.sizes != "16,32" else "80").split(",")])
     a.scene = os.path.join(a.source, "data", "scenes", "cube_3d.toml")
     print("| n | unknowns | back end | ranks | QP (s/step) | step (s/step) | QP speed-up | efficiency | peak memory per process (MB) |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -97,6 +110,26 @@ def main():
         for line in log.splitlines():
             if keep.match(line):
                 print("    " + line)
+
+
+def saddle_table(a, sizes):
+    a.scene = ""
+    print("| pair | n | unknowns X | back end | ranks | QP (s/step) | step (s/step) | QP speed-up | peak memory per process (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for pair in a.saddle.split(","):
+        for n in sizes:
+            tag = f"{pair.replace('/', '').replace('+', 'b')}_n{n}"
+            qp, step, peak, summary, _ = run(a, os.path.join(a.out, tag + "_native"), 0, membrane(n, pair))
+            print(f"| {pair} | {n} | {summary['n_free']} | native (UMFPACK) | 1 | {qp:.4g} | {step:.4g} | | {peak / 1024:.0f} |",
+                  flush=True)
+            one = None
+            for ranks in (1, 2):
+                qp, step, peak, summary, _ = run(a, os.path.join(a.out, f"{tag}_petsc{ranks}"), ranks,
+                                                 membrane(n, pair) + ["solver.backend=petsc"])
+                one = one or qp
+                print(f"| {pair} | {n} | {summary['n_free']} | petsc pdas (MUMPS) | {ranks} | {qp:.4g} | {step:.4g} | "
+                      f"{one / qp:.2f} | {peak / 1024:.0f} |", flush=True)
+    return 0
 
 
 if __name__ == "__main__":
