@@ -5,7 +5,7 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
 
  1. The seed's membrane through its impact (P1+/P0, and the saddle-form pairs P2/P1 and
     P1+/P1), the elastic disk's impact and the prism in space (tol = 1e-12), and the
-    blocks sliding with Coulomb friction in the plane and in space (backward Euler): the
+    blocks sliding with Coulomb friction in the plane (also with P2/P1) and in space: the
     PETSc back end on one process and on two gives the native run's history —
     energies, friction work, active counts, probes — to 1e-9 of each column's largest
     value; summary.json says `backend` and `ranks`.
@@ -40,6 +40,8 @@ SCENES = {
     # with Coulomb friction: the semismooth Newton loop on rank 0 around the distributed pdas
     "incline_block": [os.path.join(src, "data/scenes/incline_block.toml"), "time.T=0.05"],
     "incline_block_3d": [os.path.join(src, "data/scenes/incline_block_3d.toml"), "time.T=0.03"],
+    # friction's inner QPs in saddle form (MUMPS on the ranks)
+    "incline_block_P2P1": [os.path.join(src, "data/scenes/incline_block.toml"), "time.T=0.05", "method.pair=P2/P1"],
 }
 
 
