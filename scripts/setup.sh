@@ -26,6 +26,7 @@ packages=(
   python3-pytest python3-nbconvert python3-ipykernel       # its tests and notebooks (label python)
   freefem++ libfreefem++                   # independent reference numbers
   petsc-dev libopenmpi-dev openmpi-bin     # the PETSc back end under mpirun (docs/distributed.md)
+  libmumps-dev libscalapack-openmpi-dev    # its parallel MUMPS, named first in the plugin's link
 )
 
 scripts/install_missing.sh setup "${packages[@]}"
