@@ -71,18 +71,18 @@ def main():
     ap.add_argument("mpiexec")
     ap.add_argument("source")
     ap.add_argument("out")
-    ap.add_argument("--sizes", default="16,32")
+    ap.add_argument("--sizes", default=None, help="mesh sizes (default 16,32; with --saddle 80)")
     ap.add_argument("--pcs", default="gamg,jacobi")
     ap.add_argument("--native", default="factor,cg")
     ap.add_argument("--log", action="store_true")
     ap.add_argument("--saddle", default="", help="pairs in saddle form, on the membrane (e.g. P1+/P1,P2/P1)")
     a = ap.parse_args()
     if a.saddle:
-        return saddle_table(a, [int(s) for s in (a.sizes if a.sizes != "16,32" else "80").split(",")])
+        return saddle_table(a, [int(s) for s in (a.sizes or "80").split(",")])
     a.scene = os.path.join(a.source, "data", "scenes", "cube_3d.toml")
     print("| n | unknowns | back end | ranks | QP (s/step) | step (s/step) | QP speed-up | efficiency | peak memory per process (MB) |")
     print("|---|---|---|---|---|---|---|---|---|")
-    sizes, pcs = [int(s) for s in a.sizes.split(",")], a.pcs.split(",")
+    sizes, pcs = [int(s) for s in (a.sizes or "16,32").split(",")], a.pcs.split(",")
     log = ""
     for n in sizes:
         base = scene(n)
