@@ -149,7 +149,7 @@ PetscInt negative_eigenvalues(KSP ksp) {
 // K̃ X = b̃ in saddle form, X_A already at its bounds.  K̃ is factorized again only when
 // the held set differs from the one factorized — a step without a change of contact
 // costs forward and back solves, as with the serial pdas's LU (measured on the P1+/P1
-// membrane, n = 80: refactorizing at every iteration made the run 5.7 times the serial
+// membrane, n = 80: refactorizing at every iteration made the run 5.6 times the serial
 // one's time).  b̃ = r − K X_A on the free rows and the Z rows, X_A on the held ones.
 // Returns the failure, empty on success.
 std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held, const std::vector<PetscInt>& rows,
