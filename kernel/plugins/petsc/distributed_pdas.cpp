@@ -61,6 +61,14 @@ double global_max(double local) {
   return out;
 }
 
+// Whether two held sets agree on every rank (collective; a rank whose local sets differ
+// in size, e.g. against an empty "none yet", counts as a difference).
+bool same_on_every_rank(const std::vector<signed char>& a, const std::vector<signed char>& b) {
+  double differs = a.size() == b.size() ? 0.0 : 1.0;
+  for (std::size_t i = 0; differs == 0.0 && i < a.size(); ++i) differs += a[i] != b[i];
+  return global_max(differs) == 0.0;
+}
+
 // ‖D⁻¹r‖∞ (at least the largest finite bound, so that a QP with r = 0 still has a scale).
 double solution_scale(DistributedQP& q, Vec D) {
   const PetscScalar *r, *d, *l, *u;
@@ -154,9 +162,7 @@ PetscInt negative_eigenvalues(KSP ksp) {
 // Returns the failure, empty on success.
 std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held, const std::vector<PetscInt>& rows,
                          Vec b, int saddle_rows) {
-  double differs = q.factor && q.factored_held.size() == held.size() ? 0.0 : 1.0;
-  for (std::size_t i = 0; differs == 0.0 && i < held.size(); ++i) differs += held[i] != q.factored_held[i];
-  const bool refactor = global_max(differs) > 0.0;
+  const bool refactor = !q.factor || !same_on_every_rank(held, q.factored_held);  // (q.factor: alike on every rank)
   if (!q.factor) {
     check(MatDuplicate(q.S, MAT_COPY_VALUES, &q.K_held), "MatDuplicate");
     check(KSPCreate(PETSC_COMM_WORLD, &q.factor), "KSPCreate");
@@ -240,9 +246,9 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   std::string failure;
   for (; iterations < max_iterations; ++iterations) {
     const std::vector<signed char> held = held_set(q, D);
-    double changed = held_before.empty() ? 1.0 : 0.0;
-    for (std::size_t i = 0; i < held_before.size(); ++i) changed += held[i] != held_before[i];
-    if (global_max(changed) == 0.0) break;  // the held set is the last one: X solves the QP
+    // the held set is the last one: X solves the QP (`iterations`, alike on every rank,
+    // guards the collective test: a rank may hold no rows)
+    if (iterations > 0 && same_on_every_rank(held, held_before)) break;
     held_before = held;
     // X_A = bound_A, then the system in S's pattern with A's rows and columns the identity's
     rows.clear();
