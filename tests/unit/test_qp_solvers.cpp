@@ -466,6 +466,53 @@ TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
   EXPECT_GT(pdas.counters().cg_solves, 12);
 }
 
+TEST(QPSolvers, PdasPricesANewSetWithFewFreeUnknownsAsAFreeBlockFactorization) {
+  // Resting contact: most unknowns held, the free ones in a patch that moves.  The factor
+  // is S's (the first call has no bounds); S's whole factorization on this 60 × 60 grid
+  // costs more than a CG solve, but the factorization of the free block S_II — about 3 %
+  // of the unknowns — far less.  The first new set goes to CG (measuring its cost); the
+  // next must be priced as what sync_factor would do, a free-block factorization, and
+  // taken that way (priced as S's whole factorization, every such set went to CG: the
+  // resting membrane's reconstruction at n = 640, 40 % of its step time).
+  const int m = 60, n = m * m;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int k = i * m + j;
+      t.emplace_back(k, k, 8.0);
+      if (i + 1 < m) t.emplace_back(k, k + m, -1.0), t.emplace_back(k + m, k, -1.0);
+      if (j + 1 < m) t.emplace_back(k, k + 1, -1.0), t.emplace_back(k + 1, k, -1.0);
+    }
+  BoundQP qp;
+  qp.S.resize(n, n);
+  qp.S.setFromTriplets(t.begin(), t.end());
+  qp.S.makeCompressed();
+  qp.upper = VectorXd::Constant(n, inf);
+  qp.lower = VectorXd::Constant(n, -inf);
+  qp.r = VectorXd::Constant(n, 1.0);
+  cdyn::PDASSolver pdas;
+  QPResult r = pdas.solve(qp);  // no bound: the factor of S
+  qp.lower.setZero();
+  auto lift = [&](int first) {  // pressed onto X ≥ 0 everywhere but a 10 × 10 patch
+    qp.r.setConstant(-1.0);
+    for (int i = first; i < first + 10; ++i) qp.r.segment(i * m + first, 10).setConstant(1.0);
+  };
+  lift(20);
+  r = pdas.solve(qp, &r);
+  expect_kkt(qp, r, QPOptions{}.tol, "first patch");
+  EXPECT_GT(static_cast<int>(r.active.size()), n * 9 / 10);
+  // PDAS met two sets on its way: the first by CG, the second by a free block's factor
+  // (an analysis of its own besides S's)
+  EXPECT_EQ(pdas.counters().cg_solves, 1);
+  EXPECT_EQ(pdas.counters().analyses, 2);
+  const int factorizations = pdas.counters().factorizations;
+  lift(22);
+  r = pdas.solve(qp, &r);
+  expect_kkt(qp, r, QPOptions{}.tol, "moved patch");
+  EXPECT_EQ(pdas.counters().cg_solves, 1);  // not CG again: the new free block factorized
+  EXPECT_GT(pdas.counters().factorizations, factorizations);
+}
+
 TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
   const BoundQP qp = random_problem(15, 15, 41, false);
   cdyn::PDASSolver pdas;

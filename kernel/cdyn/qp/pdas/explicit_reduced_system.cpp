@@ -234,27 +234,29 @@ bool ExplicitReducedSystem::resync_pays(const HeldSet& held) const {
   if (settled_runs_ == 0 || counters_.cg_solves == 0) return true;
   const double uses = settled_uses_ / settled_runs_;
   const double cg_call = 2.0 * double(counters_.cg_iterations) / counters_.cg_solves * cg_iteration_flops();
+  const Sync sync = sync_cost(held);
+  return uses * (cg_call - sync.solve_flops) > sync.flops;
+}
+
+// What sync_factor(held) will do, in flops, and the flops of a solve it leaves: row
+// updates at their mean cost so far, or a refactorization (priced_as_refactorization) —
+// of the free block S_II when it leaves at most pdas_free_block of the unknowns free.
+// A new free block's flops are estimated from S's: a fraction f of the unknowns of a
+// 2D-like graph, f^1.5 of the factorization (nested dissection's N^1.5) and f of the
+// solve.  (Measured where it matters, the resting membrane's reconstruction at n = 640:
+// 1.2 % of the unknowns free, a block factorization 57 ms against CG's 63 ms a solve,
+// where S's whole factorization costs 1.8 s.)
+ExplicitReducedSystem::Sync ExplicitReducedSystem::sync_cost(const HeldSet& held) const {
   int changes = 0, n_free = 0;
   for (int i = 0; i < n_; ++i) {
     changes += held[i] != factor_held_[i];
     n_free += !held[i];
   }
-  // What sync_factor(held) will do, and the solves it leaves.  A new free block's flops
-  // are estimated from S's: a fraction f of the unknowns of a 2D-like graph, f^1.5 of
-  // the factorization (nested dissection's N^1.5) and f of the solve.
-  double sync = 0.0, solve = chol_.solve_flops();
-  if (block_mode_) {
-    sync = block_chol_.factorization_flops();
-    solve = block_chol_.solve_flops();
-  } else if (priced_as_refactorization(changes)) {
-    const double f = double(n_free) / n_;
-    const bool block = n_free <= opt_.pdas_free_block * n_;
-    sync = chol_.factorization_flops() * (block ? std::pow(f, 1.5) : 1.0);
-    solve *= block ? f : 1.0;
-  } else {
-    sync = changes * (update_flops_ / updates_measured_);
-  }
-  return uses * (cg_call - solve) > sync;
+  if (block_mode_) return {block_chol_.factorization_flops(), block_chol_.solve_flops()};
+  if (!priced_as_refactorization(changes)) return {changes * (update_flops_ / updates_measured_), chol_.solve_flops()};
+  const double f = double(n_free) / n_;
+  const bool block = n_free <= opt_.pdas_free_block * n_;
+  return {chol_.factorization_flops() * (block ? std::pow(f, 1.5) : 1.0), chol_.solve_flops() * (block ? f : 1.0)};
 }
 
 // Counts the calls in a row that use one held set (resync_pays).
@@ -277,9 +279,9 @@ void ExplicitReducedSystem::track_run(const HeldSet& held) {
 double ExplicitReducedSystem::cg_iteration_flops() const { return 2.0 * double(S_.nonZeros()) + 12.0 * n_; }
 
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
-// Bringing the factor there is what sync_factor does: beyond update_limit() changes, or
-// where it pays (refactorization_pays), a refactorization, whose flops the analysis
-// counts; otherwise one row update per changed unknown, whose cost CHOLMOD counts
+// Bringing the factor there is what sync_factor does (sync_cost): beyond update_limit()
+// changes, or where it pays (refactorization_pays), a refactorization — of the free block
+// alone when most unknowns are held — whose flops the analysis counts; otherwise one row update per changed unknown, whose cost CHOLMOD counts
 // (modfl, mean over the updates done so far on this pattern; before any is measured, a
 // refactorization's count stands in for them).  That is weighed against a CG solve of
 // (mean iterations so far) × (2 nnz(S) + 12 n) flops: the product with S and the five
@@ -293,16 +295,12 @@ double ExplicitReducedSystem::cg_iteration_flops() const { return 2.0 * double(S
 // so a run repeats exactly.
 bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   if (opt_.pdas_cg_always) return true;
-  int changes = 0;
-  for (int i = 0; i < n_; ++i) changes += held[i] != factor_held_[i];
   const double iterations = counters_.cg_solves > 0 ? double(counters_.cg_iterations) / counters_.cg_solves : 50.0;
   const double cg_flops = iterations * cg_iteration_flops();
   // With the factor of S_II the alternative is a new one (of about the same size).
   if (block_mode_) return block_chol_.factorization_flops() > cg_flops;
   if (counters_.cg_solves == 0) return true;  // CG's own cost measured first
-  const double sync_flops = priced_as_refactorization(changes) ? chol_.factorization_flops()
-                                                                : changes * (update_flops_ / updates_measured_);
-  return sync_flops > cg_flops;
+  return sync_cost(held).flops > cg_flops;
 }
 
 void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {

@@ -76,6 +76,10 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool priced_as_refactorization(int changes) const;
   bool resync_due(const HeldSet& held) const;
   bool resync_pays(const HeldSet& held) const;
+  struct Sync {
+    double flops, solve_flops;
+  };
+  Sync sync_cost(const HeldSet& held) const;
   bool cg_pays(const HeldSet& held) const;
   double cg_iteration_flops() const;
   void track_run(const HeldSet& held);
