@@ -368,10 +368,24 @@ Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, dou
 Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const HeldSet& held,
                                                    const Eigen::VectorXd& value, double tol) {
   set_held(held);
-  Eigen::VectorXd b = qp.r;  // b̃_I = r_I − S_IA X_A, b̃_A = X_A
-  for (int j = 0; j < n_; ++j)
-    if (held[j])
-      for (SparseMatrix::InnerIterator it(S_, j); it; ++it) b[it.row()] -= it.value() * value[j];
+  // b̃_I = r_I − S_IA X_A, b̃_A = X_A.  S being symmetric, b̃_i for a free i is also a
+  // gather over column i, whose terms come in the same order (j increasing) as the
+  // scatter's over the held columns j: whichever reads fewer columns — the gather when
+  // most unknowns are held (resting contact: about 99 %, where the scatter over S's
+  // held columns was a quarter of pdas's own time at n = 640).
+  Eigen::VectorXd b = qp.r;
+  const auto n_held = std::count_if(held.begin(), held.end(), [](char h) { return h != 0; });
+  if (2 * n_held > n_) {
+#pragma omp parallel for schedule(static) if (S_.nonZeros() >= kParallelWork)
+    for (int i = 0; i < n_; ++i)
+      if (!held[i])
+        for (SparseMatrix::InnerIterator it(S_, i); it; ++it)
+          if (held[it.row()]) b[i] -= it.value() * value[it.row()];
+  } else {
+    for (int j = 0; j < n_; ++j)
+      if (held[j])
+        for (SparseMatrix::InnerIterator it(S_, j); it; ++it) b[it.row()] -= it.value() * value[j];
+  }
   copy_held_values(held, value, b);
   Eigen::VectorXd X = solve_tilde(b, tol);
   copy_held_values(held, value, X);
