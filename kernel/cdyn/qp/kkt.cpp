@@ -46,7 +46,9 @@ double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::Ve
                     const Eigen::VectorXd* D_known) {
   const int n = qp.size();
   if (n == 0) return 0.0;
-  const Eigen::VectorXd D = D_known ? *D_known : scaling_diagonal(qp);
+  Eigen::VectorXd own;  // (the caller's D is read in place: no copy of n entries a call)
+  if (!D_known) own = scaling_diagonal(qp);
+  const Eigen::VectorXd& D = D_known ? *D_known : own;
   double F = 0.0, scale = 0.0;
   bool finite = true;
 #pragma omp parallel for schedule(static) reduction(max : F, scale) reduction(&& : finite) \
