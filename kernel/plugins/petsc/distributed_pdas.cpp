@@ -161,7 +161,7 @@ PetscInt negative_eigenvalues(KSP ksp) {
 // one's time).  b̃ = r − K X_A on the free rows and the Z rows, X_A on the held ones.
 // Returns the failure, empty on success.
 std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held, const std::vector<PetscInt>& rows,
-                         Vec b, int saddle_rows) {
+                         Vec b, Vec X_held, int saddle_rows) {
   const bool refactor = !q.factor || !same_on_every_rank(held, q.factored_held);  // (q.factor: alike on every rank)
   if (!q.factor) {
     check(MatDuplicate(q.S, MAT_COPY_VALUES, &q.K_held), "MatDuplicate");
@@ -176,8 +176,6 @@ std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held,
     q.factored_held = held;
   }
   // X_A: X on the held rows, 0 elsewhere
-  Vec X_held = nullptr;
-  check(VecDuplicate(q.X, &X_held), "VecDuplicate");
   {
     const PetscScalar* x = nullptr;
     PetscScalar* xa = nullptr;
@@ -195,7 +193,6 @@ std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held,
       if (held[i] != 0) bb[i] = xa[i];
     VecRestoreArrayRead(X_held, &xa), VecRestoreArray(b, &bb);
   }
-  VecDestroy(&X_held);
   check(KSPSolve(q.factor, b, q.X), "KSPSolve");
   KSPConvergedReason reason;
   check(KSPGetConvergedReason(q.factor, &reason), "KSPGetConvergedReason");
@@ -214,12 +211,13 @@ std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held,
 
 int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm) {
   const int max_iterations = settings.max_iterations > 0 ? settings.max_iterations : 100;
-  Vec D = nullptr, b = nullptr;
+  Vec D = nullptr, b = nullptr, X_held = nullptr;  // (X_held: X_A, in saddle form)
   Mat S_held = nullptr;
   KSP ksp = nullptr;
   check(VecDuplicate(q.r, &D), "VecDuplicate");
   check(VecDuplicate(q.r, &b), "VecDuplicate");
   const bool saddle = settings.saddle_rows > 0;
+  if (saddle) check(VecDuplicate(q.r, &X_held), "VecDuplicate");
   if (saddle) check(VecCopy(q.D, D), "VecCopy");
   else check(MatGetDiagonal(q.S, D), "MatGetDiagonal");
   PetscReal min_d = 0.0;
@@ -270,7 +268,7 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
       continue;
     }
     if (saddle) {
-      failure = solve_saddle(q, held, rows, b, settings.saddle_rows);
+      failure = solve_saddle(q, held, rows, b, X_held, settings.saddle_rows);
       if (!failure.empty()) break;
       update_reaction(q);
       continue;
@@ -300,6 +298,7 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   MatDestroy(&S_held);
   VecDestroy(&D);
   VecDestroy(&b);
+  if (X_held) VecDestroy(&X_held);
   // (the same on every rank: the reason and the held-set test are global)
   if (!failure.empty()) throw NumericalError(failure);
   return iterations;
