@@ -148,17 +148,20 @@ class DiscreteGradient final : public StepQPScheme {
     if (!autonomous_) data = data_increment(p_, t0, t1);
     State trial_state = s;
 
-    // One iteration: the QP with the correction −2β M (X_prev − Uⁿ) on the right.
+    // One iteration: the QP with the correction −2β M (X_prev − Uⁿ) on the right, where
+    // MD_prev = M (X_prev − Uⁿ) comes from the iterates (M is linear: the lag's product
+    // is the same combination of theirs as X_prev of their X, no product of its own).
     struct Iterate {
       double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0, dissipated = 0;
       Eigen::VectorXd X, U1, W1, reaction;
+      Eigen::VectorXd MD;     // M (X − Uⁿ)
       Eigen::VectorXd X_lag;  // the X of the lagged correction (empty: none)
     };
-    auto iterate = [&](double beta, const Eigen::VectorXd* X_prev) {
+    auto iterate = [&](double beta, const Eigen::VectorXd* X_prev, const Eigen::VectorXd* MD_prev) {
       StepStats qp;
       Iterate it;
       it.beta = beta;
-      it.X = solve(X_prev ? Eigen::VectorXd(r0 - 2 * beta * mass_times(*X_prev - s.U)) : r0, trial_state, qp);
+      it.X = solve(X_prev ? Eigen::VectorXd(r0 - 2 * beta * *MD_prev) : r0, trial_state, qp);
       if (X_prev) it.X_lag = *X_prev;
       stats.qp_iterations += qp.qp_iterations;
       stats.qp_seconds += qp.qp_seconds;
@@ -166,6 +169,7 @@ class DiscreteGradient final : public StepQPScheme {
       stats.kkt_residual = std::max(stats.kkt_residual, qp.kkt_residual);
       ++stats.energy_iterations;
       const Eigen::VectorXd D = it.X - s.U;
+      it.MD = mass_times(D);
       it.U1 = 2.0 * it.X - s.U;
       double kkt = 0.0;
       it.W1 = full_step_(it.U1, t1, &kkt);
@@ -173,7 +177,7 @@ class DiscreteGradient final : public StepQPScheme {
       it.psi1 = p_.potential_energy(it.W1, t1);
       it.reaction = trial_state.reaction;
       if (!autonomous_) it.work = data.work(p_, it.X, it.reaction);
-      const double DMD = D.dot(mass_times(D));
+      const double DMD = D.dot(it.MD);
       it.dq2 = 4 * DMD;  // |Δq|²_C = ΔUᵀ M ΔU
       const double pull = 4 * c * BtV.dot(D);
       it.dissipated = damping_work(2.0 * D, h);  // W_d = 4c (α_M DᵀMD + β_K DᵀAD)
@@ -208,9 +212,9 @@ class DiscreteGradient final : public StepQPScheme {
              std::abs(it.beta) / (2 * c * c) * (it.X - it.X_lag).lpNorm<Eigen::Infinity>() <= tol_ * scale;
     };
 
-    Iterate a = iterate(0.0, nullptr);
+    Iterate a = iterate(0.0, nullptr, nullptr);
     if (!small_energy(a)) {
-      Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &a.X);
+      Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &a.X, &a.MD);
       for (int k = 0; !(small_energy(b) && settled(b)); ++k) {
         // the lag contracts by |β|/(2c²): at |β| ≥ c² it no longer pays (or diverges)
         if (k >= kMaxIterations || !(std::abs(b.beta) < c * c)) return false;
@@ -220,9 +224,13 @@ class DiscreteGradient final : public StepQPScheme {
         // X_b + (β − β_b)(X_b − X_a)/(β_b − β_a): its error is then second order in the
         // β step instead of first, and ΔH at the new iterate is nearly ΔH(β) itself, on
         // which the secant converges superlinearly.
-        Eigen::VectorXd X_lag = b.X;
-        if (b.beta != a.beta) X_lag += ((next - b.beta) / (b.beta - a.beta)) * (b.X - a.X);
-        Iterate c_it = iterate(next, &X_lag);
+        Eigen::VectorXd X_lag = b.X, MD_lag = b.MD;
+        if (b.beta != a.beta) {
+          const double k = (next - b.beta) / (b.beta - a.beta);
+          X_lag += k * (b.X - a.X);
+          MD_lag += k * (b.MD - a.MD);
+        }
+        Iterate c_it = iterate(next, &X_lag, &MD_lag);
         a = std::move(b);
         b = std::move(c_it);
       }
