@@ -419,6 +419,23 @@ TEST(QPSolvers, PdasBringsTheFactorToANewSetWhereThatCostsLessThanCg) {
   EXPECT_GT(pdas.counters().row_updates, updates);
 }
 
+// The 5-point stencil on an m × m grid with `diagonal` on the diagonal and −1 for each
+// neighbour: the Laplacian plus (diagonal − 4) I inside, SPD for diagonal > 4.
+SparseMatrix grid_stencil(int m, double diagonal) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      const int k = i * m + j;
+      t.emplace_back(k, k, diagonal);
+      if (i + 1 < m) t.emplace_back(k, k + m, -1.0), t.emplace_back(k + m, k, -1.0);
+      if (j + 1 < m) t.emplace_back(k, k + 1, -1.0), t.emplace_back(k + 1, k, -1.0);
+    }
+  SparseMatrix S(m * m, m * m);
+  S.setFromTriplets(t.begin(), t.end());
+  S.makeCompressed();
+  return S;
+}
+
 TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
   // A well-conditioned 2D step matrix (the 5-point Laplacian plus 20 I on a 30 × 30
   // grid: CG converges in a few iterations, a refactorization costs tens of them) and a
@@ -430,18 +447,8 @@ TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
   // call by CG.  (With a resync at every settled set — the rule before — each cycle
   // changes the factor: a chattering membrane spent 3.7 ms a step on it.)
   const int m = 30, n = m * m;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int k = i * m + j;
-      t.emplace_back(k, k, 24.0);
-      if (i + 1 < m) t.emplace_back(k, k + m, -1.0), t.emplace_back(k + m, k, -1.0);
-      if (j + 1 < m) t.emplace_back(k, k + 1, -1.0), t.emplace_back(k + 1, k, -1.0);
-    }
   BoundQP qp;
-  qp.S.resize(n, n);
-  qp.S.setFromTriplets(t.begin(), t.end());
-  qp.S.makeCompressed();
+  qp.S = grid_stencil(m, 24.0);
   qp.lower = VectorXd::Zero(n);
   qp.upper = VectorXd::Constant(n, inf);
   auto press = [&](int first_row, int last_row) {  // X < 0 on those rows without the bound
@@ -475,18 +482,8 @@ TEST(QPSolvers, PdasPricesANewSetWithFewFreeUnknownsAsAFreeBlockFactorization) {
   // taken that way (priced as S's whole factorization, every such set went to CG: the
   // resting membrane's reconstruction at n = 640, 40 % of its step time).
   const int m = 60, n = m * m;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int k = i * m + j;
-      t.emplace_back(k, k, 8.0);
-      if (i + 1 < m) t.emplace_back(k, k + m, -1.0), t.emplace_back(k + m, k, -1.0);
-      if (j + 1 < m) t.emplace_back(k, k + 1, -1.0), t.emplace_back(k + 1, k, -1.0);
-    }
   BoundQP qp;
-  qp.S.resize(n, n);
-  qp.S.setFromTriplets(t.begin(), t.end());
-  qp.S.makeCompressed();
+  qp.S = grid_stencil(m, 8.0);
   qp.upper = VectorXd::Constant(n, inf);
   qp.lower = VectorXd::Constant(n, -inf);
   qp.r = VectorXd::Constant(n, 1.0);
