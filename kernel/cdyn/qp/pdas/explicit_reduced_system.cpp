@@ -280,10 +280,11 @@ double ExplicitReducedSystem::cg_iteration_flops() const { return 2.0 * double(S
 
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
 // Bringing the factor there is what sync_factor does (sync_cost): beyond update_limit()
-// changes, or where it pays (refactorization_pays), a refactorization — of the free block
-// alone when most unknowns are held — whose flops the analysis counts; otherwise one row update per changed unknown, whose cost CHOLMOD counts
-// (modfl, mean over the updates done so far on this pattern; before any is measured, a
-// refactorization's count stands in for them).  That is weighed against a CG solve of
+// changes, or where it pays (refactorization_pays), a refactorization — of the free
+// block alone when most unknowns are held — whose flops the analysis counts; otherwise
+// one row update per changed unknown, whose cost CHOLMOD counts (modfl, mean over the
+// updates done so far on this pattern; before any is measured, a refactorization's
+// count stands in for them).  That is weighed against a CG solve of
 // (mean iterations so far) × (2 nnz(S) + 12 n) flops: the product with S and the five
 // vector updates of an iteration.  All are sparse loops near memory speed, so flops
 // compare their times to within a small factor (docs/performance.md (a): at n = 80
@@ -369,10 +370,11 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
                                                    const Eigen::VectorXd& value, double tol) {
   set_held(held);
   // b̃_I = r_I − S_IA X_A, b̃_A = X_A.  S being symmetric, b̃_i for a free i is also a
-  // gather over column i, whose terms come in the same order (j increasing) as the
-  // scatter's over the held columns j: whichever reads fewer columns — the gather when
-  // most unknowns are held (resting contact: about 99 %, where the scatter over S's
-  // held columns was a quarter of pdas's own time at n = 640).
+  // gather over column i, its terms in the same order (j increasing) as the scatter's
+  // over the held columns j (the same sum where S is symmetric to the bit): whichever
+  // reads fewer columns — the gather when most unknowns are held (resting contact:
+  // about 99 %, where the scatter over S's held columns was a quarter of pdas's own
+  // time at n = 640).
   Eigen::VectorXd b = qp.r;
   const auto n_held = std::count_if(held.begin(), held.end(), [](char h) { return h != 0; });
   if (2 * n_held > n_) {
