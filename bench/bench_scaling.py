@@ -11,7 +11,9 @@ per step over the steps with an active constraint (history.csv's solve_s where
 active > 0: PDAS iterations, CG solves, row updates and refactorizations as the contact
 zone grows).  Prints a table (with the time per dof and step, which a step of O(N)
 work would keep constant), the least-squares exponent p of time/step ∝ N^p over the
-sizes (target p ≤ 1.2), with N the free dofs, and the exponents between consecutive sizes.
+sizes (target p ≤ 1.2), with N the free dofs, and the exponents between consecutive sizes;
+then the mean over steps 2.. (history.csv's step_s: without step 1's analysis and first
+factorization) and its exponent from n = 160 to 640, the performance issue's range.
 
 With --first 20 the same runs also give the mean of their first 20 steps (history.csv's
 step_s: the step's own time, without the loop's output), so that one run per size
@@ -85,12 +87,14 @@ def main():
     print(f"load average at start: {os.getloadavg()[0]:.2f}")
     print(f"| n | free dofs | steps | s/step | ns per dof and step | QP s/step | contact steps | QP s/step in contact | whole process (s) | peak RSS (MB) |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    points, qpoints, cpoints, fpoints = [], [], [], []
+    points, qpoints, cpoints, fpoints, steady = [], [], [], [], []
     for n in [int(v) for v in a.n.split(",")]:
         s, rss, wall, contact, step_s = run(a.cdyn, n, a.steps, a.work, sets)
         if a.first:
             fpoints.append((s["n_free"], sum(step_s[:a.first]) / len(step_s[:a.first])))
             print(f"  n = {n}: steps 1-{a.first} of the same run: {fpoints[-1][1] * 1e3:.2f} ms a step", flush=True)
+        if len(step_s) > 1:  # steps 2.., without step 1's analysis and first factorization
+            steady.append((n, s["n_free"], sum(step_s[1:]) / len(step_s[1:])))
         points.append((s["n_free"], s["s_per_step"]))
         qpoints.append((s["n_free"], s["qp_s_per_step"]))
         in_contact = "—"
@@ -104,6 +108,14 @@ def main():
         print(f"fitted exponent: time/step ~ N^{fit(points):.2f} (QP part N^{fit(qpoints):.2f}); target <= 1.1 from n = 160 to 640")
         local = [f"{fit(points[k:k + 2]):.2f}" for k in range(len(points) - 1)]
         print(f"local exponents between consecutive sizes: {', '.join(local)}")
+    if len(steady) >= 2:
+        print(f"steps 2-{a.steps} (history.csv's step_s, without step 1's analysis and factorization): " +
+              ", ".join(f"n = {n} {t * 1e3:.2f} ms ({t / N * 1e9:.1f} ns per dof)" for n, N, t in steady))
+        target = [(N, t) for n, N, t in steady if 160 <= n <= 640]
+        if len(target) >= 2:
+            local = [f"{fit(target[k:k + 2]):.2f}" for k in range(len(target) - 1)]
+            print(f"steps 2-{a.steps}, n = 160 ... 640: N^{fit(target):.2f} (between consecutive sizes {', '.join(local)}); "
+                  "target <= 1.1")
     if len(fpoints) >= 2:
         print(f"fitted exponent over steps 1-{a.first}: time/step ~ N^{fit(fpoints):.2f}")
     if len(cpoints) >= 2:
