@@ -217,9 +217,12 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   check(VecDuplicate(q.r, &D), "VecDuplicate");
   check(VecDuplicate(q.r, &b), "VecDuplicate");
   const bool saddle = settings.saddle_rows > 0;
-  if (saddle) check(VecDuplicate(q.r, &X_held), "VecDuplicate");
-  if (saddle) check(VecCopy(q.D, D), "VecCopy");
-  else check(MatGetDiagonal(q.S, D), "MatGetDiagonal");
+  if (saddle) {
+    check(VecDuplicate(q.r, &X_held), "VecDuplicate");
+    check(VecCopy(q.D, D), "VecCopy");
+  } else {
+    check(MatGetDiagonal(q.S, D), "MatGetDiagonal");
+  }
   PetscReal min_d = 0.0;
   check(VecMin(D, nullptr, &min_d), "VecMin");
   if (!(min_d > 0)) throw NumericalError("S has a diagonal entry ≤ 0 (not positive definite)");

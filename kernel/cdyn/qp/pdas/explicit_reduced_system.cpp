@@ -89,7 +89,7 @@ void ExplicitReducedSystem::factorize(SparseCholesky& factor, const SparseMatrix
 
 void ExplicitReducedSystem::refactorize(const HeldSet& held) {
   const auto n_free = std::count(held.begin(), held.end(), 0);
-  block_mode_ = n_free <= opt_.pdas_free_block * n_;
+  block_mode_ = factorizes_free_block(n_free);
   if (block_mode_) {
     factorize_free_block(held);
   } else {
@@ -255,7 +255,7 @@ ExplicitReducedSystem::Sync ExplicitReducedSystem::sync_cost(const HeldSet& held
   if (block_mode_) return {block_chol_.factorization_flops(), block_chol_.solve_flops()};
   if (!priced_as_refactorization(changes)) return {changes * (update_flops_ / updates_measured_), chol_.solve_flops()};
   const double f = double(n_free) / n_;
-  const bool block = n_free <= opt_.pdas_free_block * n_;
+  const bool block = factorizes_free_block(n_free);
   return {chol_.factorization_flops() * (block ? std::pow(f, 1.5) : 1.0), chol_.solve_flops() * (block ? f : 1.0)};
 }
 

@@ -68,6 +68,9 @@ class ExplicitReducedSystem : public ReducedSystem {
   void factorize(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
                  const std::vector<int>* unknowns = nullptr);
   void refactorize(const HeldSet& held);
+  // Whether a refactorization for a set leaving n_free unknowns free factorizes the free
+  // block S_II alone (QPOptions::pdas_free_block): what refactorize does and sync_cost prices.
+  bool factorizes_free_block(long n_free) const { return n_free <= opt_.pdas_free_block * n_; }
   void factorize_free_block(const HeldSet& held);
   Eigen::VectorXd solve_free_block(const Eigen::VectorXd& b) const;
   void sync_factor(const HeldSet& held);
