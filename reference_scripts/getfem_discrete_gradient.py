@@ -3,7 +3,7 @@
 on the clamped bar (docs/bar_impact.md §3, data/scenes/bar.toml), implemented
 independently of cdyn: GetFEM's matrices, dense linear algebra, an orthonormal basis of
 Ker B from scipy, and the energy correction β found by a bracketing root finder on the
-exact corrected step (cdyn: a local basis of Ker B, a lagged correction, secant steps).
+corrected step (cdyn: a local basis of Ker B, secant and Muller steps).
 
     ρ u_tt − E u_xx = 0 on (0, 1), E = ρ = 1, u(1) = 0, u(0, t) ≥ 0,
     u(x, 0) = (1 − x)/2, u_t(x, 0) = 0.
@@ -20,13 +20,14 @@ W_0 ≥ 0 at x = 0.
     (the seed's eq. (14)), W = U + N d with N an orthonormal basis of Ker B
     (scipy.linalg.null_space); one inequality, solved in closed form (the unconstrained
     minimizer, or the one with W_0 = 0 by a Lagrange multiplier).
-  - a step with correction β: X = U^{n+½} minimizes ½XᵀS_βX − r_βᵀX over X_0 ≥ 0 with
-    S_β = (4c² + 2β)M + A, r_β = (4c² + 2β)M Uⁿ + 2c BᵀVⁿ (M = BᵀC⁻¹B), one bound again;
-    then U^{n+1} = W(2X − Uⁿ) by (14), V^{n+1} = 2c C⁻¹B(U^{n+1} − Uⁿ) − Vⁿ.
+  - a step with correction β: X = U^{n+½} minimizes ½XᵀSX − r_βᵀX over X_0 ≥ 0 with
+    S = 4c²M + A, r_β = 4c²M Uⁿ + 2c BᵀVⁿ − 2β M(X₀ − Uⁿ) (M = BᵀC⁻¹B, X₀ the step's
+    solution at β = 0), one bound again; then U^{n+1} = W(2X − Uⁿ) by (14),
+    V^{n+1} = 2c C⁻¹B(U^{n+1} − Uⁿ) − Vⁿ.
   - β: 0 when the step's energy change ΔH(0) is below 1e-13 of its terms; otherwise the
     root of ΔH(β) = ΔK + Ψ(U^{n+1}) − Ψ(Uⁿ) by scipy.optimize.brentq, bracketed by
-    doubling away from 0, the root nearest 0; if no bracket exists within
-    4c² + 2β > 0, two steps of dt/2 (recursively), as cdyn does.
+    doubling away from 0, the root nearest 0; if no bracket exists within |β| < c²,
+    two steps of dt/2 (recursively), as cdyn does.
 
     /usr/bin/python3 reference_scripts/getfem_discrete_gradient.py -n 40 -dt 0.0125 -steps 480 -out dg.csv [-pair P2/P1]
 writes  step,t,E_total,u_contact.
@@ -112,10 +113,10 @@ def main():
     def psi(W):
         return 0.5 * W @ A @ W
 
-    def attempt(U, V, h, beta):
+    def attempt(U, V, h, beta, d=None):
         c = 1.0 / h
-        k = 4 * c * c + 2 * beta
-        X = min_one_bound(k * M + A, k * M @ U + 2 * c * B.T @ V)
+        r = 4 * c * c * M @ U + 2 * c * B.T @ V
+        X = min_one_bound(4 * c * c * M + A, r if d is None else r - 2 * beta * d)
         D = X - U
         W1 = reconstruct(2 * X - U)
         kin_change = 8 * c * c * D @ M @ D - 4 * c * (B.T @ V) @ D
@@ -126,11 +127,12 @@ def main():
         c = 1.0 / h
         dH, terms, X, W1 = attempt(U, V, h, 0.0)
         if abs(dH) > 1e-13 * terms:
-            f = lambda b: attempt(U, V, h, b)[0]  # noqa: E731
+            d = M @ (X - U)  # the uncorrected step's direction, fixed for the step
+            f = lambda b: attempt(U, V, h, b, d)[0]  # noqa: E731
             bracket = None
             for sign in (1.0, -1.0):
                 lo, width = 0.0, 1.0
-                while width < 2 * c * c and bracket is None:
+                while width < c * c and bracket is None:
                     hi = sign * width
                     if f(lo) * f(hi) <= 0.0:
                         bracket = (min(lo, hi), max(lo, hi))
@@ -141,7 +143,7 @@ def main():
                 U, V = step(U, V, h / 2, depth + 1)
                 return step(U, V, h / 2, depth + 1)
             beta = brentq(f, *bracket, xtol=1e-14, rtol=1e-15)
-            _, _, X, W1 = attempt(U, V, h, beta)
+            _, _, X, W1 = attempt(U, V, h, beta, d)
         V1 = 2 * c * (Cinv @ (B @ (W1 - U))) - V
         return W1, V1
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """compare_discrete_gradient.py — cdyn's energy-exact scheme against an independent
 implementation (reference_scripts/getfem_discrete_gradient.py: GetFEM's P1+/P0 or P2/P1
-matrices on the clamped bar, an orthonormal basis of Ker B, the exact corrected step and
+matrices on the clamped bar, an orthonormal basis of Ker B, dense corrected steps and
 a bracketing root finder for β; cdyn solves eq. (14) by a local basis of Ker B for
 P1+/P0 and by the method of multipliers for P2/P1).
 

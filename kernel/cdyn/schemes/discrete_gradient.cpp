@@ -1,45 +1,47 @@
 // discrete_gradient.cpp — an energy-exact full discretization of the singular dynamic
-// method: a discrete gradient (Gonzalez 1996) of the reduced potential Ψ.
+// method: a discrete gradient (Gonzalez 1996; McLachlan, Quispel and Robidoux 1999) of
+// the reduced potential Ψ.
 //
 // Under condition (12), with q = C⁻¹B U the velocity-space coordinate of the massful
 // part, the semi-discrete problem is the Hamiltonian system (docs/equations.md,
 // Theorem 1 and eq. (14))
 //     q̇ = V,   C V̇ = −∇Ψ(q),   Ψ(q) = min { ½WᵀAW − LᵀW : C⁻¹B W = q, W ∈ K̄^h },
 // H = ½VᵀCV + Ψ(q) the seed's J, and Ψ convex with a Lipschitz gradient.  The scheme
-//     q^{n+1} − qⁿ = dt V^{n+½},   C (V^{n+1} − Vⁿ) = −dt ∇̄Ψ(qⁿ, q^{n+1}),
-//     ∇̄Ψ = ∇Ψ(q^{n+½}) + β C (q^{n+1} − qⁿ),
-//     β = [Ψ(q^{n+1}) − Ψ(qⁿ) − ∇Ψ(q^{n+½})·Δq] / |Δq|²_C            (Gonzalez's correction)
-// has ∇̄Ψ·Δq = Ψ(q^{n+1}) − Ψ(qⁿ), hence H^{n+1} = Hⁿ exactly, through impacts, with the
-// constraint exact at every full step (no penalty).  ∇Ψ(q^{n+½}) is what the half-step
-// midpoint QP computes; the correction is a mass term: in U,
-//     Bᵀ(V^{n+1} − Vⁿ)/dt + A U^{n+½} + β M (U^{n+1} − Uⁿ) = L + Gᵀλ,   U^{n+½} ∈ K̄^h,
-// so X = U^{n+½} solves the midpoint QP with S = (4c² + 2β) M + A and
-// r = (4c² + 2β) M Uⁿ + 2c Bᵀ Vⁿ + L (c = 1/dt).  Ψ at the full steps comes from the
-// reconstruction of eq. (14) (schemes/full_step.hpp).
+//     q^{n+1} − qⁿ = dt V^{n+½},   C (V^{n+1} − Vⁿ) = −dt ∇̄Ψ,
+//     ∇̄Ψ = ∇Ψ(q^{n+½}) + β C Δq₀,   β such that ∇̄Ψ·Δq = Ψ(q^{n+1}) − Ψ(qⁿ),
+// Δq = q^{n+1} − qⁿ and Δq₀ the same increment of the uncorrected step (β = 0), has
+// H^{n+1} = Hⁿ exactly, through impacts, with the constraint exact at every full step
+// (no penalty).  ∇̄Ψ is a discrete gradient in McLachlan–Quispel–Robidoux's sense (the
+// discrete chain rule, and consistent: β C Δq₀ is of the size of Gonzalez's β C Δq,
+// whose direction Δq it takes at the step without correction).  ∇Ψ(q^{n+½}) is what the
+// half-step midpoint QP computes; the correction is a mass term: in U,
+//     Bᵀ(V^{n+1} − Vⁿ)/dt + A U^{n+½} + β M (U₀^{n+1} − Uⁿ) = L + Gᵀλ,   U^{n+½} ∈ K̄^h,
+// so X = U^{n+½} solves the midpoint QP, S = 4c² M + A (c = 1/dt) for every β, with
+// r = 4c² M Uⁿ + 2c Bᵀ Vⁿ + L − 2β d, d = M (X₀ − Uⁿ), X₀ the solution at β = 0.
+// Ψ at the full steps comes from the reconstruction of eq. (14) (schemes/full_step.hpp).
 //
 // Solving it.  The kinetic energy change of a step is fixed by the kinematics alone,
 //     ΔK = ½(V^{n+1} + Vⁿ)ᵀC(V^{n+1} − Vⁿ) = 8c² DᵀMD − 4c (BᵀVⁿ)ᵀD,   D = X − Uⁿ,
-// so the step's energy error is ΔH = ΔK + Ψ(q^{n+1}) − Ψ(qⁿ), and the scheme is the
-// pair (X, β) with X the solution of the corrected QP and ΔH = 0.  β = 0 first: where
-// Ψ is quadratic on [qⁿ, q^{n+1}] (no switch of the active set) ΔH = 0 already and the
-// step is plain midpoint.  Otherwise β₁ = ΔH₀/|Δq|²_C (Gonzalez's formula at β = 0) and
-// secant steps on ΔH(β).  The correction is applied lagged, 2β M (X_lag − Uⁿ) moved to
-// the right-hand side, so that every iteration solves the QP with the same matrix
-// S = 4Mc² + A — the one the solver has factorized — instead of a new S per β; the lag
-// contracts by |β|/(2c²) per iteration (measured on the membrane: |β| ≤ 460 against
-// 2c² = 2e6), X_lag is the last X extrapolated to the new β (so that the lag's error is
-// second order in the β step and the secant sees ΔH(β) nearly exactly), and the
-// iteration stops when ΔH is below energy_tol times the energy size of its terms (its
-// round-off floor) and the lag would move X by less than the QP tolerance.
+// so the step's energy error is ΔH(β) = ΔK + Ψ(q^{n+1}) − Ψ(qⁿ), a function of the one
+// number β.  β = 0 first: where Ψ is quadratic on [qⁿ, q^{n+1}] (no switch of the
+// active set) ΔH = 0 already and the step is plain midpoint.  Otherwise β₁ = ΔH₀/|Δq₀|²_C
+// (Gonzalez's formula at β = 0), a secant step, then Muller's: on fixed active sets X
+// is affine in β (S does not depend on it), so are U^{n+1} and its reconstruction, and
+// ΔH(β) is a quadratic, which the parabola through the last three iterates finds
+// exactly: four iterations a switching step, one QP and one reconstruction each, every
+// QP with the matrix the solver has already factorized.  The iteration stops when ΔH is
+// below energy_tol times the energy size of its terms (its round-off floor).  (Gonzalez's
+// own correction β C Δq makes S = (4c² + 2β) M + A depend on β: a new factorization per
+// iterate, or, on the right-hand side, a lag to iterate out at a contraction |β|/(2c²),
+// which took 6–9 iterations a switching step where this takes 4: docs/schemes.md.)
 //
-// When the correction asks for |β| ≥ c² (a large dt against a stiff switch: the seed's
-// membrane at n = 10, dt = 0.01 asks β = −4.8e4 against 2c² = 2e4, where the corrected
-// QP (4c² + 2β)M + A would not even be convex) or the iteration does not settle, the
-// step is taken as two steps of dt/2, each a discrete gradient step itself, and so on
-// down to dt/2¹⁰: c² grows four times per halving while the defect's β does not, so
-// the switch is resolved by a few substeps and J stays exact.  The substep matrix
-// 4M/h² + A is factorized while the substeps last.  Below dt/2¹⁰ the step is refused
-// with a NumericalError, never continued with an energy error.
+// When the correction asks for |β| ≥ c² (a large dt against a stiff switch; the force
+// 2β d would then undo more than half of the step's inertia 4c² M D₀) or the iteration
+// does not converge, the step is taken as two steps of dt/2, each a discrete gradient
+// step itself, and so on down to dt/2¹⁰: c² grows four times per halving while the
+// defect's β does not, so the switch is resolved by a few substeps and J stays exact.
+// The substep matrix 4M/h² + A is factorized while the substeps last.  Below dt/2¹⁰ the
+// step is refused with a NumericalError, never continued with an energy error.
 //
 // Data that depend on t (a load L(t), an obstacle that moves: K̄^h(t)) make Ψ = Ψ(q, t)
 // and H is no longer conserved: dH/dt = ∂ₜΨ, the power of the load and of the obstacle.
@@ -79,7 +81,6 @@ class DiscreteGradient final : public StepQPScheme {
       : StepQPScheme(p, solver, dt, 1.0, 4.0, parameters.condense, parameters.damping, 2.0),
         full_step_(std::move(full_step)),
         energy_tol_(parameters.energy_tol),
-        tol_(parameters.tol),
         autonomous_(!has_data_in_t(p)) {}
   std::string name() const override { return "discrete_gradient"; }
   FullSteps full_steps() const override { return FullSteps::Reconstructed; }
@@ -148,21 +149,18 @@ class DiscreteGradient final : public StepQPScheme {
     if (!autonomous_) data = data_increment(p_, t0, t1);
     State trial_state = s;
 
-    // One iteration: the QP with the correction −2β M (X_prev − Uⁿ) on the right, where
-    // MD_prev = M (X_prev − Uⁿ) comes from the iterates (M is linear: the lag's product
-    // is the same combination of theirs as X_prev of their X, no product of its own).
+    // One iteration: the QP with the correction −2β d on the right, d = M (X₀ − Uⁿ) the
+    // direction of the uncorrected step (β = 0), the same for every β of the step.
     struct Iterate {
       double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0, dissipated = 0;
       Eigen::VectorXd X, U1, W1, reaction;
-      Eigen::VectorXd MD;     // M (X − Uⁿ)
-      Eigen::VectorXd X_lag;  // the X of the lagged correction (empty: none)
+      Eigen::VectorXd MD;  // M (X − Uⁿ)
     };
-    auto iterate = [&](double beta, const Eigen::VectorXd* X_prev, const Eigen::VectorXd* MD_prev) {
+    auto iterate = [&](double beta, const Eigen::VectorXd* d) {
       StepStats qp;
       Iterate it;
       it.beta = beta;
-      it.X = solve(X_prev ? Eigen::VectorXd(r0 - 2 * beta * *MD_prev) : r0, trial_state, qp);
-      if (X_prev) it.X_lag = *X_prev;
+      it.X = solve(d ? Eigen::VectorXd(r0 - 2 * beta * *d) : r0, trial_state, qp);
       stats.qp_iterations += qp.qp_iterations;
       stats.qp_seconds += qp.qp_seconds;
       stats.active = qp.active;
@@ -200,37 +198,39 @@ class DiscreteGradient final : public StepQPScheme {
       if (!(slope < -0.1 * b.dq2 && slope > -10 * b.dq2)) return model;
       return b.beta - b.dH / slope;
     };
-    // The lag is resolved when one more iteration would move X by less than the QP
-    // tolerance: the lag contracts by |β|/(2c²) (S = 4c²M + A against the correction
-    // 2βM), so the next move is at most that times the last one.  (Asking the last move
-    // itself to be below the tolerance fails when the step solves are inexact to their
-    // tolerance — pdas's CG while the active set moves, or the CG path — whose noise in X
-    // does not contract.)
-    auto settled = [&](const Iterate& it) {
-      const double scale = std::max(it.X.lpNorm<Eigen::Infinity>(), 1e-300);
-      return it.X_lag.size() == 0 ||
-             std::abs(it.beta) / (2 * c * c) * (it.X - it.X_lag).lpNorm<Eigen::Infinity>() <= tol_ * scale;
+
+    // With three iterates, the root of the parabola through them (Muller's method): on
+    // fixed active sets X, the reconstruction and hence ΔH are affine and quadratic in β,
+    // so the parabola's root is the step's.  Taken only where it corrects the secant's
+    // step by less than that step (away from a kink of ΔH, and not from round-off's
+    // curvature).
+    auto muller = [&](const Iterate& x0, const Iterate& x1, const Iterate& x2, double secant_root) {
+      const double d01 = (x1.dH - x0.dH) / (x1.beta - x0.beta), d12 = (x2.dH - x1.dH) / (x2.beta - x1.beta);
+      const double curvature = (d12 - d01) / (x2.beta - x0.beta);
+      const double w = d12 + curvature * (x2.beta - x1.beta);
+      const double disc = w * w - 4 * x2.dH * curvature;
+      if (!(disc >= 0) || !std::isfinite(curvature)) return secant_root;
+      const double q = w + std::copysign(std::sqrt(disc), w);
+      if (q == 0) return secant_root;
+      const double root = x2.beta - 2 * x2.dH / q;
+      return std::abs(root - secant_root) <= std::abs(secant_root - x2.beta) ? root : secant_root;
     };
 
-    Iterate a = iterate(0.0, nullptr, nullptr);
+    Iterate a = iterate(0.0, nullptr);
     if (!small_energy(a)) {
-      Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &a.X, &a.MD);
-      for (int k = 0; !(small_energy(b) && settled(b)); ++k) {
-        // the lag contracts by |β|/(2c²): at |β| ≥ c² it no longer pays (or diverges)
-        if (k >= kMaxIterations || !(std::abs(b.beta) < c * c)) return false;
-        // the secant on ΔH(β) (β kept once ΔH is small: only the lag is left to settle)
-        const double next = small_energy(b) ? b.beta : secant(a, b);
-        // The lag is taken at X extrapolated to the new β along the last two iterates,
-        // X_b + (β − β_b)(X_b − X_a)/(β_b − β_a): its error is then second order in the
-        // β step instead of first, and ΔH at the new iterate is nearly ΔH(β) itself, on
-        // which the secant converges superlinearly.
-        Eigen::VectorXd X_lag = b.X, MD_lag = b.MD;
-        if (b.beta != a.beta) {
-          const double k = (next - b.beta) / (b.beta - a.beta);
-          X_lag += k * (b.X - a.X);
-          MD_lag += k * (b.MD - a.MD);
-        }
-        Iterate c_it = iterate(next, &X_lag, &MD_lag);
+      const Eigen::VectorXd d = a.MD;
+      Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &d);
+      std::optional<Iterate> z;  // the iterate before a
+      for (int k = 0;; ++k) {
+        // |β| ≥ c²: the correction 2β d would undo more than half of the step's inertia
+        // 4c² M D₀ — the switch is too stiff for the step: halve it
+        if (!(std::abs(b.beta) < c * c)) return false;
+        if (small_energy(b)) break;
+        if (k >= kMaxIterations) return false;
+        double next = secant(a, b);
+        if (z) next = muller(*z, a, b, next);
+        Iterate c_it = iterate(next, &d);
+        z = std::move(a);
         a = std::move(b);
         b = std::move(c_it);
       }
@@ -249,7 +249,7 @@ class DiscreteGradient final : public StepQPScheme {
   static constexpr int kMaxIterations = 30;
   static constexpr int kMaxHalvings = 10;
   FullStepReconstruction full_step_;
-  double energy_tol_, tol_;
+  double energy_tol_;
   bool autonomous_;  // neither L nor K̄^h depends on t: Ψ = Ψ(q), H conserved
   bool initialized_ = false;
   double psi_ = 0.0;  // Ψ(qⁿ): the potential energy of the reconstructed Uⁿ
