@@ -129,6 +129,19 @@ TEST(PetscStepSolvers, IndefiniteMatrixIsANumericalFailure) {
   expect_same(distributed("pdas")->solve(ok), native(ok), ok, "after the failure");
 }
 
+// A diagonal entry ≤ 0: S is not positive definite, found before any Krylov solve (the
+// solve's work vectors, made before the test, are freed on the way out:
+// mpi_step_solvers_free_their_objects).  The next solver, a new object with an S of
+// the same size, must send its own S (found: a new solver made at the destroyed one's
+// address took the distributed S for its own and solved with the bad one).
+TEST(PetscStepSolvers, NonPositiveDiagonalIsANumericalFailure) {
+  BoundQP qp = obstacle_qp(10);
+  qp.S.coeffRef(17, 17) = -1.0;
+  EXPECT_THROW(distributed("pdas")->solve(qp), NumericalError);
+  const BoundQP ok = obstacle_qp(10);
+  expect_same(distributed("pdas")->solve(ok), native(ok), ok, "after the failure");
+}
+
 // The obstacle QP in saddle form (qp/bound_qp.hpp): A the Laplacian, C a mass matrix's
 // kind (the 5-point pattern, h² on the diagonal and h²/8 off it: SPD), B = C, c = 4, so
 // S = A + c Bᵀ C⁻¹ B = A + c C; the bounds and the load are obstacle_qp's.

@@ -211,14 +211,14 @@ std::string solve_saddle(DistributedQP& q, const std::vector<signed char>& held,
 
 int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm) {
   const int max_iterations = settings.max_iterations > 0 ? settings.max_iterations : 100;
-  Vec D = nullptr, b = nullptr, X_held = nullptr;  // (X_held: X_A, in saddle form)
-  Mat S_held = nullptr;
-  KSP ksp = nullptr;
-  check(VecDuplicate(q.r, &D), "VecDuplicate");
-  check(VecDuplicate(q.r, &b), "VecDuplicate");
+  Owned<Vec, VecDestroy> D, b, X_held;  // (X_held: X_A, in saddle form)
+  Owned<Mat, MatDestroy> S_held;
+  Owned<KSP, KSPDestroy> ksp;
+  check(VecDuplicate(q.r, D.out()), "VecDuplicate");
+  check(VecDuplicate(q.r, b.out()), "VecDuplicate");
   const bool saddle = settings.saddle_rows > 0;
   if (saddle) {
-    check(VecDuplicate(q.r, &X_held), "VecDuplicate");
+    check(VecDuplicate(q.r, X_held.out()), "VecDuplicate");
     check(VecCopy(q.D, D), "VecCopy");
   } else {
     check(MatGetDiagonal(q.S, D), "MatGetDiagonal");
@@ -231,8 +231,8 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
   if (!warm) update_reaction(q);
 
   if (!saddle) {
-    check(MatDuplicate(q.S, MAT_COPY_VALUES, &S_held), "MatDuplicate");
-    check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
+    check(MatDuplicate(q.S, MAT_COPY_VALUES, S_held.out()), "MatDuplicate");
+    check(KSPCreate(PETSC_COMM_WORLD, ksp.out()), "KSPCreate");
     check(KSPSetType(ksp, KSPCG), "KSPSetType");
     configure_krylov(ksp, settings.pc, /*fixed_size=*/true);
     check(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
@@ -297,11 +297,6 @@ int distributed_pdas(DistributedQP& q, const SolveSettings& settings, bool warm)
     }
     update_reaction(q);
   }
-  KSPDestroy(&ksp);
-  MatDestroy(&S_held);
-  VecDestroy(&D);
-  VecDestroy(&b);
-  if (X_held) VecDestroy(&X_held);
   // (the same on every rank: the reason and the held-set test are global)
   if (!failure.empty()) throw NumericalError(failure);
   return iterations;

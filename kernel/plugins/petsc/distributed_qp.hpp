@@ -27,6 +27,23 @@ namespace cdyn::petsc {
 // A PETSc error code as an exception: NumericalError naming the call.
 void check(PetscErrorCode code, const char* call);
 
+// A PETSc object of a solve's own, destroyed when the solve leaves, also when a failure
+// is thrown on the way (every rank throws the same failure: the destruction stays
+// collective).  E.g. Owned<Vec, VecDestroy> b; VecDuplicate(r, b.out()); VecCopy(r, b).
+template <class T, PetscErrorCode (*Destroy)(T*)>
+class Owned {
+ public:
+  Owned() = default;
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  ~Owned() { Destroy(&object_); }
+  T* out() { return &object_; }  // for the creating call
+  operator T() const { return object_; }
+
+ private:
+  T object_ = nullptr;
+};
+
 // What rank 0 asks of the others (session.hpp).
 enum class Command : int { solve = 1, clear = 2, quit = 3 };
 void send(Command command);  // rank 0

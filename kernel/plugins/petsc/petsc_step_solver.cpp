@@ -39,6 +39,11 @@ class PetscStepSolver : public StepSolver {
   PetscStepSolver(std::string name, Algorithm algorithm, Preconditioner pc, bool pc_given, const QPOptions& options)
       : name_(std::move(name)), algorithm_(algorithm), pc_(pc), pc_given_(pc_given), options_(options) {}
 
+  // A solver made later at this one's address must not take the distributed S for its own.
+  ~PetscStepSolver() override {
+    if (matrix_owner().solver == this) matrix_owner() = {};
+  }
+
   std::string name() const override { return "petsc " + name_; }
 
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {

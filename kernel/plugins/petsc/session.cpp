@@ -13,6 +13,7 @@ namespace cdyn::petsc::session {
 namespace {
 
 bool started = false;
+bool handler_pushed = false;
 
 }  // namespace
 
@@ -21,7 +22,8 @@ void start() {
   if (PetscInitializeNoArguments() != 0) throw InputError("solver.backend: PETSc (and MPI) could not be initialized");
   // Errors come back as codes, turned into one-line exceptions (distributed_qp.cpp),
   // instead of PETSc's tracebacks on every rank.
-  if (!std::getenv("CDYN_PETSC_TRACE")) PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
+  handler_pushed = !std::getenv("CDYN_PETSC_TRACE");
+  if (handler_pushed) PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
   started = true;
 }
 
@@ -66,6 +68,7 @@ void finish() {
   if (!started) return;
   if (rank() == 0 && size() > 1) send(Command::quit);
   the_distributed_qp().clear();
+  if (handler_pushed) PetscPopErrorHandler();  // (freed, as everything else, before the finalization)
   PetscFinalize();
   started = false;
 }

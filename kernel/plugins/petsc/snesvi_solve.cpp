@@ -26,29 +26,30 @@ PetscErrorCode constant_jacobian(SNES, Vec, Mat, Mat, void*) { return 0; }  // S
 }  // namespace
 
 int snesvi_solve(DistributedQP& q, const SolveSettings& settings) {
-  SNES snes = nullptr;
-  Vec l = nullptr, u = nullptr, F = nullptr;
-  petsc_bounds(q, &l, &u);
-  check(VecDuplicate(q.r, &F), "VecDuplicate");
-  check(SNESCreate(PETSC_COMM_WORLD, &snes), "SNESCreate");
-  check(SNESSetType(snes, SNESVINEWTONRSLS), "SNESSetType");
-  check(SNESSetFunction(snes, F, residual, &q), "SNESSetFunction");
-  check(SNESSetJacobian(snes, q.S, q.S, constant_jacobian, &q), "SNESSetJacobian");
-  check(SNESVISetVariableBounds(snes, l, u), "SNESVISetVariableBounds");
-  check(SNESSetTolerances(snes, 1e-2 * settings.tol, 1e-14, 0.0,
-                          settings.max_iterations > 0 ? settings.max_iterations : 200, 10000),
-        "SNESSetTolerances");
-  KSP ksp = nullptr;
-  check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
-  check(KSPSetType(ksp, KSPCG), "KSPSetType");  // the reduced systems are S's principal blocks: SPD
-  configure_krylov(ksp, settings.pc, /*fixed_size=*/false);
-  check(KSPSetTolerances(ksp, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT, 10000), "KSPSetTolerances");
-  check(SNESSetFromOptions(snes), "SNESSetFromOptions");
-  const PetscErrorCode code = SNESSolve(snes, nullptr, q.X);
+  PetscErrorCode code = 0;
   PetscInt iterations = 0;
-  SNESGetIterationNumber(snes, &iterations);
-  SNESDestroy(&snes);
-  VecDestroy(&l), VecDestroy(&u), VecDestroy(&F);
+  {  // (SNES, the bounds and F freed before the crossover)
+    Owned<SNES, SNESDestroy> snes;
+    Owned<Vec, VecDestroy> l, u, F;
+    petsc_bounds(q, l.out(), u.out());
+    check(VecDuplicate(q.r, F.out()), "VecDuplicate");
+    check(SNESCreate(PETSC_COMM_WORLD, snes.out()), "SNESCreate");
+    check(SNESSetType(snes, SNESVINEWTONRSLS), "SNESSetType");
+    check(SNESSetFunction(snes, F, residual, &q), "SNESSetFunction");
+    check(SNESSetJacobian(snes, q.S, q.S, constant_jacobian, &q), "SNESSetJacobian");
+    check(SNESVISetVariableBounds(snes, l, u), "SNESVISetVariableBounds");
+    check(SNESSetTolerances(snes, 1e-2 * settings.tol, 1e-14, 0.0,
+                            settings.max_iterations > 0 ? settings.max_iterations : 200, 10000),
+          "SNESSetTolerances");
+    KSP ksp = nullptr;
+    check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+    check(KSPSetType(ksp, KSPCG), "KSPSetType");  // the reduced systems are S's principal blocks: SPD
+    configure_krylov(ksp, settings.pc, /*fixed_size=*/false);
+    check(KSPSetTolerances(ksp, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT, 10000), "KSPSetTolerances");
+    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+    code = SNESSolve(snes, nullptr, q.X);
+    SNESGetIterationNumber(snes, &iterations);
+  }
   check(code, "SNESSolve");
   check(MatMult(q.S, q.X, q.reaction), "MatMult");
   check(VecAXPY(q.reaction, -1.0, q.r), "VecAXPY");

@@ -40,31 +40,32 @@ TaoType tao_type(Algorithm a) {
 }  // namespace
 
 int tao_solve(DistributedQP& q, const SolveSettings& settings) {
-  Tao tao = nullptr;
-  Vec l = nullptr, u = nullptr;
-  petsc_bounds(q, &l, &u);
-  check(TaoCreate(PETSC_COMM_WORLD, &tao), "TaoCreate");
-  check(TaoSetType(tao, tao_type(settings.algorithm)), "TaoSetType");
-  check(TaoSetSolution(tao, q.X), "TaoSetSolution");
-  check(TaoSetObjectiveAndGradient(tao, nullptr, objective_and_gradient, &q), "TaoSetObjectiveAndGradient");
-  check(TaoSetHessian(tao, q.S, q.S, constant_hessian, &q), "TaoSetHessian");
-  check(TaoSetVariableBounds(tao, l, u), "TaoSetVariableBounds");
-  // TAO's projected-gradient test relative to the start's, to 1e-8: enough to find the
-  // active set, which the crossover takes to tol in a solve or two.  Pushed to tol
-  // itself, GPCG and BQNLS run into their iteration limit (measured: 10⁴ iterations,
-  // 11 s and 2 s, on 900 unknowns whose pdas takes 0.02 s).
-  check(TaoSetTolerances(tao, 0.0, 1e-8, 0.0), "TaoSetTolerances");
-  check(TaoSetMaximumIterations(tao, settings.max_iterations > 0 ? settings.max_iterations : 1000),
-        "TaoSetMaximumIterations");
-  KSP ksp = nullptr;
-  check(TaoGetKSP(tao, &ksp), "TaoGetKSP");
-  if (ksp) configure_krylov(ksp, settings.pc, /*fixed_size=*/false);  // TAO's own Krylov method
-  check(TaoSetFromOptions(tao), "TaoSetFromOptions");
-  const PetscErrorCode code = TaoSolve(tao);
+  PetscErrorCode code = 0;
   PetscInt iterations = 0;
-  TaoGetIterationNumber(tao, &iterations);
-  TaoDestroy(&tao);
-  VecDestroy(&l), VecDestroy(&u);
+  {  // (TAO and the bounds freed before the crossover)
+    Owned<Tao, TaoDestroy> tao;
+    Owned<Vec, VecDestroy> l, u;
+    petsc_bounds(q, l.out(), u.out());
+    check(TaoCreate(PETSC_COMM_WORLD, tao.out()), "TaoCreate");
+    check(TaoSetType(tao, tao_type(settings.algorithm)), "TaoSetType");
+    check(TaoSetSolution(tao, q.X), "TaoSetSolution");
+    check(TaoSetObjectiveAndGradient(tao, nullptr, objective_and_gradient, &q), "TaoSetObjectiveAndGradient");
+    check(TaoSetHessian(tao, q.S, q.S, constant_hessian, &q), "TaoSetHessian");
+    check(TaoSetVariableBounds(tao, l, u), "TaoSetVariableBounds");
+    // TAO's projected-gradient test relative to the start's, to 1e-8: enough to find the
+    // active set, which the crossover takes to tol in a solve or two.  Pushed to tol
+    // itself, GPCG and BQNLS run into their iteration limit (measured: 10⁴ iterations,
+    // 11 s and 2 s, on 900 unknowns whose pdas takes 0.02 s).
+    check(TaoSetTolerances(tao, 0.0, 1e-8, 0.0), "TaoSetTolerances");
+    check(TaoSetMaximumIterations(tao, settings.max_iterations > 0 ? settings.max_iterations : 1000),
+          "TaoSetMaximumIterations");
+    KSP ksp = nullptr;
+    check(TaoGetKSP(tao, &ksp), "TaoGetKSP");
+    if (ksp) configure_krylov(ksp, settings.pc, /*fixed_size=*/false);  // TAO's own Krylov method
+    check(TaoSetFromOptions(tao), "TaoSetFromOptions");
+    code = TaoSolve(tao);
+    TaoGetIterationNumber(tao, &iterations);
+  }
   check(code, "TaoSolve");
   // Whatever TAO's own verdict, the crossover from its X decides (and rank 0's KKT test).
   check(MatMult(q.S, q.X, q.reaction), "MatMult");
