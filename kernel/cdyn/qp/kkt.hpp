@@ -35,6 +35,10 @@ double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::Ve
 std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X,
                             const Eigen::VectorXd& reaction, const Eigen::VectorXd& D);
 
+// X_i set to the bound nearest to it, for every i of `active`: exactly at the bound it is
+// held at, as an active-set solver's X_A = bound_A, where an interpolate of such
+// solutions is there only to round-off.
+void hold_at_bounds(const BoundQP& qp, const std::vector<int>& active, Eigen::VectorXd& X);
 // Fills reaction, active, kkt_residual, converged of a result whose X is set, with the
 // common measure.  `form` is the problem's QuadraticForm.
 void finish_result(const BoundQP& qp, const QuadraticForm& form, double tol, QPResult& result);

@@ -151,6 +151,27 @@ Eigen::VectorXd FullStepReconstruction::by_local_basis(const Eigen::VectorXd& U,
   return U + transpose_times(Zt_, last_.X);
 }
 
+FullStepReconstruction::Point FullStepReconstruction::last_point() const {
+  if (method_ != Method::LocalBasis || !has_last_) return {};
+  return {last_.X, last_.reaction, qp_.r, last_.active};
+}
+
+std::optional<Eigen::VectorXd> FullStepReconstruction::on_line(const Point& a, const Point& b, double theta,
+                                                               const Eigen::VectorXd& U, double t, double* kkt) {
+  if (method_ != Method::LocalBasis || !needed() || a.y.size() != qp_.size() || b.y.size() != qp_.size())
+    return std::nullopt;
+  auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) { return Eigen::VectorXd(p + theta * (q - p)); };
+  Eigen::VectorXd y = along(a.y, b.y);
+  const Eigen::VectorXd reaction = along(a.reaction, b.reaction);
+  set_bounds(U, modes_.pinned, t);
+  hold_at_bounds(qp_, b.active, y);
+  qp_.r = along(a.r, b.r);
+  const double residual = kkt_residual(qp_, y, reaction, &D_);  // (exact on the points' set only)
+  if (active_set(qp_, y, reaction, D_) != b.active || !(residual <= tol_)) return std::nullopt;
+  if (kkt) *kkt = residual;
+  return U + transpose_times(Zt_, y);
+}
+
 Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U, double t, double* kkt) {
   if (!qp_.saddle) prepare_multipliers();
   if (mu_.size() == 0) mu_ = Eigen::VectorXd::Zero(p_.mass->n_velocity());

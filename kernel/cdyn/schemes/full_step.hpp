@@ -79,6 +79,21 @@ class FullStepReconstruction {
   // NumericalError when the multipliers do not bring B W to B U: (14) has no solution.
   Eigen::VectorXd operator()(const Eigen::VectorXd& U, double t, double* kkt = nullptr);
 
+  // The local basis's QP at the last call: its solution, reaction, right-hand side and
+  // held unknowns (empty y by multipliers, or before a call).
+  struct Point {
+    Eigen::VectorXd y, reaction, r;
+    std::vector<int> active;
+  };
+  Point last_point() const;
+  // (14) for U = U_a + θ (U_b − U_a), U_a and U_b the inputs of two points: the QP's
+  // right-hand side and bounds are affine in U, hence on an active set its solution and
+  // reaction too, and the interpolate of two points solved on the same set solves it
+  // wherever it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).  Returns W (its KKT
+  // residual to *kkt), or nothing when the test fails or (14) is solved by multipliers.
+  std::optional<Eigen::VectorXd> on_line(const Point& a, const Point& b, double theta, const Eigen::VectorXd& U,
+                                         double t, double* kkt = nullptr);
+
   // Method of multipliers iterations (step QPs) of the last call.
   int iterations() const { return iterations_; }
 

@@ -8,6 +8,7 @@
 #include "cdyn/base/format.hpp"
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/qp/friction_solvers.hpp"
+#include "cdyn/qp/kkt.hpp"
 #ifdef CDYN_WITH_IPOPT
 #include "cdyn/qp/friction_ipopt.hpp"
 #endif
@@ -33,6 +34,7 @@ void StepQPScheme::build(double a, double m) {
   qp_.upper = p_.upper;
   qp_.saddle.reset();
   condensation_.reset();
+  D_.resize(0);
   has_last_ = false;
   has_friction_last_ = false;
   if (!M_) {
@@ -135,6 +137,7 @@ void StepQPScheme::end_condensation() {
   qp_.lower = p_.lower;
   qp_.upper = p_.upper;
   condensation_.reset();
+  D_.resize(0);
   has_last_ = false;
   map_friction();
 }
@@ -226,6 +229,37 @@ Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStat
   }
   s.reaction = condensation_->expand_reaction(last_.reaction);  // λ_b = 0
   return condensation_->expand(last_.X, r);                     // X_b = S_bb⁻¹ (r_b − S_bv X_v)
+}
+
+std::optional<Eigen::VectorXd> StepQPScheme::on_line(const Point& a, const Point& b, double theta,
+                                                    const Eigen::VectorXd& r, double tol, State& s,
+                                                    StepStats& stats) {
+  if (!friction_.contacts.empty() || a.X.size() != qp_.size() || b.X.size() != qp_.size()) return std::nullopt;
+  auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) { return Eigen::VectorXd(p + theta * (q - p)); };
+  Eigen::VectorXd X = along(a.X, b.X);
+  const Eigen::VectorXd reaction = along(a.reaction, b.reaction);
+  hold_at_bounds(qp_, b.active, X);
+  qp_.r = condensation_ ? condensation_->reduce(r) : r;
+  if (D_.size() != qp_.size()) D_ = scaling_diagonal(qp_);
+  // On the points' active set the interpolate is exact (to round-off); off it, it is not
+  // the solution, however small its residual: the set must be the same.
+  std::vector<int> active = active_set(qp_, X, reaction, D_);
+  const double residual = kkt_residual(qp_, X, reaction, &D_);
+  if (active != b.active || !(residual <= tol)) return std::nullopt;
+  last_.X = X;  // the warm start of the next solve, as a solve's result would be
+  last_.reaction = reaction;
+  last_.active = std::move(active);
+  last_.kkt_residual = residual;
+  last_.converged = true;
+  last_.iterations = 0;
+  last_.seconds = 0.0;
+  stats.qp_iterations = 0;
+  stats.qp_seconds = 0.0;
+  stats.active = static_cast<int>(last_.active.size());
+  stats.kkt_residual = residual;
+  stats.converged = true;
+  s.reaction = condensation_ ? condensation_->expand_reaction(reaction) : reaction;
+  return condensation_ ? condensation_->expand(X, r) : X;
 }
 
 }  // namespace cdyn

@@ -26,6 +26,7 @@
 // method around the step solver (qp/friction_solvers.hpp), to the scheme's tol.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,6 +65,22 @@ class StepQPScheme : public TimeScheme {
 
   // Solves the step QP with right-hand side r; fills s.reaction and the stats.
   Eigen::VectorXd solve(const Eigen::VectorXd& r, State& s, StepStats& stats);
+
+  // The last solve's solution, reaction, right-hand side and held unknowns, in the
+  // QP's own (condensed) numbering.
+  struct Point {
+    Eigen::VectorXd X, reaction, r;
+    std::vector<int> active;
+  };
+  Point last_point() const { return {last_.X, last_.reaction, qp_.r, last_.active}; }
+  // The step QP with the right-hand side r = r_a + θ (r_b − r_a), solved without a solve:
+  // S fixed, the solution on an active set and its reaction S X − r are affine in r, so
+  // the interpolate of two points solved on the same set is this r's solution wherever
+  // it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).  Returns X (and sets
+  // s.reaction and the stats as solve() does), or nothing when the test fails (or with
+  // friction, whose step is not one QP).
+  std::optional<Eigen::VectorXd> on_line(const Point& a, const Point& b, double theta, const Eigen::VectorXd& r,
+                                         double tol, State& s, StepStats& stats);
 
   // The bounds of the step QP (the problem's K̄^h unless a scheme moves them).  A finite
   // bound on a condensed unknown ends the condensation for the rest of the run.
@@ -106,6 +123,7 @@ class StepQPScheme : public TimeScheme {
   std::optional<SparseMatrix> M_;
   std::optional<DiagonalCondensation> condensation_;
   BoundQP qp_;
+  Eigen::VectorXd D_;  // scaling_diagonal(qp_) for on_line, made on first use after a new S
   QPResult last_;
   bool has_last_ = false;
   std::vector<std::pair<std::string, Eigen::VectorXd*>> remembered_;
