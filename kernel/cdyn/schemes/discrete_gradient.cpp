@@ -177,6 +177,11 @@ class DiscreteGradient final : public StepQPScheme {
       it.terms = kinetic + 8 * c * c * DMD + std::abs(pull) + it.dissipated + std::abs(it.psi1) + std::abs(psi_) +
                  std::abs(it.work);
     };
+    // The two QPs' last solved points, for on_line.
+    auto keep_points = [&](Iterate& it) {
+      it.qp = last_point();
+      it.full_step = full_step_.last_point();
+    };
     auto iterate = [&](double beta, const Eigen::VectorXd* d) {
       StepStats qp;
       Iterate it;
@@ -193,8 +198,7 @@ class DiscreteGradient final : public StepQPScheme {
       it.W1 = full_step_(it.U1, t1, &kkt);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);
       it.reaction = trial_state.reaction;
-      it.qp = last_point();
-      it.full_step = full_step_.last_point();
+      if (d) keep_points(it);  // (β = 0's, only when the step switches: below)
       evaluate(it);
       return it;
     };
@@ -270,6 +274,7 @@ class DiscreteGradient final : public StepQPScheme {
 
     Iterate a = iterate(0.0, nullptr);
     if (!small_energy(a)) {
+      keep_points(a);  // (no solve since a's)
       const Eigen::VectorXd d = a.MD;
       Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &d);
       std::optional<Iterate> z;  // the iterate before a
