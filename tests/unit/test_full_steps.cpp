@@ -24,7 +24,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <set>
+#include <string>
 
 #include "../stability/stability_fixtures.hpp"
 #include "cdyn/base/error.hpp"
@@ -60,6 +62,25 @@ std::set<int> at_bound(const ConstrainedProblem& p, const Eigen::VectorXd& U) {
     if (U[i] <= p.lower[i] + 1e-12 * std::max(1.0, std::abs(p.lower[i]))) a.insert(i);
   return a;
 }
+
+// The seed's membrane (P1+/P0, the obstacle) on an n × n mesh, a scheme of step dt on it,
+// started from the initial state with its full step of eq. (14).  (Built in place: the
+// problem refers to the mesh.)
+struct MembraneRun {
+  Mesh mesh;
+  ConstrainedProblem p;
+  std::unique_ptr<StepSolver> solver;
+  std::unique_ptr<TimeScheme> scheme;
+  State s;
+  MembraneRun(int n, const std::string& scheme_name, double dt)
+      : mesh(unit_square_mesh(n)),
+        p(membrane(mesh, kP1BubbleP0, true)),
+        solver(make_step_solver("pdas", tight())),
+        scheme(make_time_scheme(scheme_name, p, *solver, dt, tight_scheme())),
+        s(initial_state(p)) {
+    scheme->initialize(s);
+  }
+};
 
 }  // namespace
 
@@ -241,12 +262,10 @@ TEST(FullSteps, ReconstructedMidpointConservesEnergyBetweenSwitches) {
   // reduced Hamiltonian system q̇ = V, C V̇ = −∇Ψ(q) (docs/schemes.md): exact where Ψ is
   // quadratic on the step, i.e. where the active set does not switch.  Checked on the
   // steps whose full-step active sets before and after agree (contact or not).
-  const Mesh mesh = unit_square_mesh(8);
-  const ConstrainedProblem p = membrane(mesh, kP1BubbleP0, true);
-  auto solver = make_step_solver("pdas", tight());
-  auto scheme = make_time_scheme("midpoint", p, *solver, 0.005, tight_scheme());
-  State s = initial_state(p);
-  scheme->initialize(s);
+  MembraneRun run(8, "midpoint", 0.005);
+  const ConstrainedProblem& p = run.p;
+  TimeScheme* scheme = run.scheme.get();
+  State& s = run.s;
   double J = scheme->energy(s).total();
   const double J0 = J;
   double worst_quiet = 0.0, worst_switch = 0.0;
@@ -416,15 +435,10 @@ TEST(DiscreteGradient, FindsTheEnergyCorrectionInAFewIterations) {
   // iterate's X before: 6.2, at most 9).  Asserted: at most 4 (a second change of an
   // active set), 2.5 on average.
   for (int n : {10, 20}) {
-    const Mesh mesh = unit_square_mesh(n);  // (the problem refers to it)
-    const ConstrainedProblem p = membrane(mesh, kP1BubbleP0, true);
-    auto solver = make_step_solver("pdas", tight());
-    auto scheme = make_time_scheme("discrete_gradient", p, *solver, 0.01, tight_scheme());
-    State s = initial_state(p);
-    scheme->initialize(s);
+    MembraneRun run(n, "discrete_gradient", 0.01);
     int switching = 0, iterations = 0, worst = 0, substeps = 0;
     for (int k = 0; k < 80; ++k) {
-      const StepStats st = scheme->step(s);
+      const StepStats st = run.scheme->step(run.s);
       substeps += st.substeps;
       if (st.energy_iterations == 1) continue;
       ++switching;
@@ -445,19 +459,14 @@ TEST(DiscreteGradient, HalvesAStepWhoseSwitchIsTooStiff) {
   // that would undo more than half of the step's inertia; the step is taken as halves
   // (c² four times larger), and J is still exact.  (Measured: one halving at dt = 0.1,
   // four at 0.2, none at 0.05 and below.)
-  const Mesh mesh = unit_square_mesh(10);
-  const ConstrainedProblem p = membrane(mesh, kP1BubbleP0, true);
-  auto solver = make_step_solver("pdas", tight());
-  auto scheme = make_time_scheme("discrete_gradient", p, *solver, 0.1, tight_scheme());
-  State s = initial_state(p);
-  scheme->initialize(s);
-  const double J0 = scheme->energy(s).total();
+  MembraneRun run(10, "discrete_gradient", 0.1);
+  const double J0 = run.scheme->energy(run.s).total();
   int substeps = 0;
   double drift = 0.0, violation = 0.0;
   for (int k = 0; k < 8; ++k) {
-    substeps += scheme->step(s).substeps;
-    drift = std::max(drift, std::abs(scheme->energy(s).total() - J0) / std::abs(J0));
-    violation = std::max(violation, p.max_violation(s.U));
+    substeps += run.scheme->step(run.s).substeps;
+    drift = std::max(drift, std::abs(run.scheme->energy(run.s).total() - J0) / std::abs(J0));
+    violation = std::max(violation, run.p.max_violation(run.s.U));
   }
   std::printf("discrete_gradient membrane dt = 0.1: %d halvings, max |J - J0|/J0 = %.2e, violation %.1e\n", substeps,
               drift, violation);
