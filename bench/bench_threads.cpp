@@ -1,5 +1,5 @@
 // bench_threads.cpp — what the second core gives (docs/performance.md, "Both cores"): the
-// mean time of a step over the impact window of the seed's membrane (steps 241–290: the
+// mean time of a step over the impact window of the seed's membrane (steps 241–270: the
 // impact at step 257, where the active set jumps from 0 to thousands of vertices, and the
 // chattering after it; bench_contact_step.cpp's window is 211–310, twice as long, which
 // this benchmark's 8 runs a size cannot afford at n = 640), for P1+/P0 midpoint and P1/P1 backward Euler, n = 320 and 640, on one thread
@@ -46,7 +46,7 @@ namespace {
 
 using namespace cdyn;
 
-constexpr int kBefore = 240, kWindow = 50;
+constexpr int kBefore = 240, kWindow = 30;
 constexpr double kDt = 1e-3;
 
 struct Method {
