@@ -82,7 +82,8 @@ std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X, const E
 }
 
 void hold_at_bounds(const BoundQP& qp, const std::vector<int>& active, Eigen::VectorXd& X) {
-  for (int i : active) X[i] = std::abs(X[i] - qp.lower[i]) <= std::abs(X[i] - qp.upper[i]) ? qp.lower[i] : qp.upper[i];
+  for (int i : active)
+    X[i] = std::abs(X[i] - qp.lower[i]) <= std::abs(X[i] - qp.upper[i]) ? qp.lower[i] : qp.upper[i];
 }
 
 void finish_result(const BoundQP& qp, const QuadraticForm& form, double tol, QPResult& result) {

@@ -210,8 +210,9 @@ class DiscreteGradient final : public StepQPScheme {
     // FullStepReconstruction::on_line).  Nothing otherwise: then β is solved for.
     auto on_line = [&](const Iterate& a, const Iterate& b, double beta,
                        const Eigen::VectorXd& d) -> std::optional<Iterate> {
-      if (a.beta == b.beta || a.qp.active != b.qp.active || a.full_step.active != b.full_step.active)
-        return std::nullopt;
+      if (a.beta == b.beta || a.full_step.y.size() == 0 || a.qp.active != b.qp.active ||
+          a.full_step.active != b.full_step.active)
+        return std::nullopt;  // (no points: (14) by multipliers)
       const double theta = (beta - a.beta) / (b.beta - a.beta);
       // a and b are exact to their solves' tolerance: a far extrapolation multiplies their
       // errors by |θ| + |1 − θ|; within θ ∈ [−1, 2] by at most 3, a solve's own accuracy

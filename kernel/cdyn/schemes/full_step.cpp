@@ -160,7 +160,9 @@ std::optional<Eigen::VectorXd> FullStepReconstruction::on_line(const Point& a, c
                                                                const Eigen::VectorXd& U, double t, double* kkt) {
   if (method_ != Method::LocalBasis || !needed() || a.y.size() != qp_.size() || b.y.size() != qp_.size())
     return std::nullopt;
-  auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) { return Eigen::VectorXd(p + theta * (q - p)); };
+  auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) {
+    return Eigen::VectorXd(p + theta * (q - p));
+  };
   Eigen::VectorXd y = along(a.y, b.y);
   const Eigen::VectorXd reaction = along(a.reaction, b.reaction);
   set_bounds(U, modes_.pinned, t);

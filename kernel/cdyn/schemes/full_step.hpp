@@ -89,8 +89,9 @@ class FullStepReconstruction {
   // (14) for U = U_a + θ (U_b − U_a), U_a and U_b the inputs of two points: the QP's
   // right-hand side and bounds are affine in U, hence on an active set its solution and
   // reaction too, and the interpolate of two points solved on the same set solves it
-  // wherever it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).  Returns W (its KKT
-  // residual to *kkt), or nothing when the test fails or (14) is solved by multipliers.
+  // wherever it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).
+  // Returns W (its KKT residual to *kkt), or nothing when the test fails or (14) is
+  // solved by multipliers.
   std::optional<Eigen::VectorXd> on_line(const Point& a, const Point& b, double theta, const Eigen::VectorXd& U,
                                          double t, double* kkt = nullptr);
 

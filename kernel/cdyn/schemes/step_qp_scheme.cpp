@@ -235,7 +235,9 @@ std::optional<Eigen::VectorXd> StepQPScheme::on_line(const Point& a, const Point
                                                     const Eigen::VectorXd& r, double tol, State& s,
                                                     StepStats& stats) {
   if (!friction_.contacts.empty() || a.X.size() != qp_.size() || b.X.size() != qp_.size()) return std::nullopt;
-  auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) { return Eigen::VectorXd(p + theta * (q - p)); };
+  auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) {
+    return Eigen::VectorXd(p + theta * (q - p));
+  };
   Eigen::VectorXd X = along(a.X, b.X);
   const Eigen::VectorXd reaction = along(a.reaction, b.reaction);
   hold_at_bounds(qp_, b.active, X);

@@ -76,9 +76,9 @@ class StepQPScheme : public TimeScheme {
   // The step QP with the right-hand side r = r_a + θ (r_b − r_a), solved without a solve:
   // S fixed, the solution on an active set and its reaction S X − r are affine in r, so
   // the interpolate of two points solved on the same set is this r's solution wherever
-  // it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).  Returns X (and sets
-  // s.reaction and the stats as solve() does), or nothing when the test fails (or with
-  // friction, whose step is not one QP).
+  // it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).  Returns X
+  // (and sets s.reaction and the stats as solve() does), or nothing when the test fails
+  // (or with friction, whose step is not one QP).
   std::optional<Eigen::VectorXd> on_line(const Point& a, const Point& b, double theta, const Eigen::VectorXd& r,
                                          double tol, State& s, StepStats& stats);
 
