@@ -217,9 +217,6 @@ class DiscreteGradient final : public StepQPScheme {
       // a and b are exact to their solves' tolerance: a far extrapolation multiplies their
       // errors by |θ| + |1 − θ|; within θ ∈ [−1, 2] by at most 3, a solve's own accuracy
       if (!(std::abs(theta - 0.5) <= 1.5)) return std::nullopt;
-      auto along = [theta](const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
-        return Eigen::VectorXd(x + theta * (y - x));
-      };
       StepStats qp;
       std::optional<Eigen::VectorXd> X =
           StepQPScheme::on_line(a.qp, b.qp, theta, r0 - 2 * beta * d, tol_, trial_state, qp);
@@ -229,16 +226,15 @@ class DiscreteGradient final : public StepQPScheme {
       it.X = std::move(*X);
       it.U1 = 2.0 * it.X - s.U;
       double kkt = 0.0;
-      std::optional<Eigen::VectorXd> W1 = full_step_.on_line(a.full_step, b.full_step, theta, it.U1, t1, &kkt);
+      std::optional<Eigen::VectorXd> W1 =
+          full_step_.on_line(a.full_step, b.full_step, theta, it.U1, t1, &kkt, &it.full_step);
       if (!W1) return std::nullopt;
       stats.kkt_residual = std::max(stats.kkt_residual, qp.kkt_residual);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);
       it.W1 = std::move(*W1);
-      it.MD = along(a.MD, b.MD);
+      it.MD = a.MD + theta * (b.MD - a.MD);
       it.reaction = trial_state.reaction;
-      it.qp = {along(a.qp.X, b.qp.X), along(a.qp.reaction, b.qp.reaction), along(a.qp.r, b.qp.r), b.qp.active};
-      it.full_step = {along(a.full_step.y, b.full_step.y), along(a.full_step.reaction, b.full_step.reaction),
-                      along(a.full_step.r, b.full_step.r), b.full_step.active};
+      it.qp = last_point();  // the accepted interpolate (StepQPScheme::on_line keeps it)
       evaluate(it);
       return it;
     };

@@ -157,21 +157,23 @@ FullStepReconstruction::Point FullStepReconstruction::last_point() const {
 }
 
 std::optional<Eigen::VectorXd> FullStepReconstruction::on_line(const Point& a, const Point& b, double theta,
-                                                               const Eigen::VectorXd& U, double t, double* kkt) {
+                                                               const Eigen::VectorXd& U, double t, double* kkt,
+                                                               Point* at) {
   if (method_ != Method::LocalBasis || !needed() || a.y.size() != qp_.size() || b.y.size() != qp_.size())
     return std::nullopt;
   auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) {
     return Eigen::VectorXd(p + theta * (q - p));
   };
-  Eigen::VectorXd y = along(a.y, b.y);
-  const Eigen::VectorXd reaction = along(a.reaction, b.reaction);
+  Point p{along(a.y, b.y), along(a.reaction, b.reaction), along(a.r, b.r), b.active};
   set_bounds(U, modes_.pinned, t);
-  hold_at_bounds(qp_, b.active, y);
-  qp_.r = along(a.r, b.r);
-  const double residual = kkt_residual(qp_, y, reaction, &D_);  // (exact on the points' set only)
-  if (active_set(qp_, y, reaction, D_) != b.active || !(residual <= tol_)) return std::nullopt;
+  hold_at_bounds(qp_, p.active, p.y);
+  qp_.r = p.r;
+  const double residual = kkt_residual(qp_, p.y, p.reaction, &D_);  // (exact on the points' set only)
+  if (active_set(qp_, p.y, p.reaction, D_) != p.active || !(residual <= tol_)) return std::nullopt;
   if (kkt) *kkt = residual;
-  return U + transpose_times(Zt_, y);
+  Eigen::VectorXd W = U + transpose_times(Zt_, p.y);
+  if (at) *at = std::move(p);
+  return W;
 }
 
 Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U, double t, double* kkt) {

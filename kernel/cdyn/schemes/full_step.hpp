@@ -90,10 +90,10 @@ class FullStepReconstruction {
   // right-hand side and bounds are affine in U, hence on an active set its solution and
   // reaction too, and the interpolate of two points solved on the same set solves it
   // wherever it keeps that set and passes the solvers' own test (kkt_residual ≤ tol).
-  // Returns W (its KKT residual to *kkt), or nothing when the test fails or (14) is
-  // solved by multipliers.
+  // Returns W (its KKT residual to *kkt, the interpolated point to *at), or nothing when
+  // the test fails or (14) is solved by multipliers.
   std::optional<Eigen::VectorXd> on_line(const Point& a, const Point& b, double theta, const Eigen::VectorXd& U,
-                                         double t, double* kkt = nullptr);
+                                         double t, double* kkt = nullptr, Point* at = nullptr);
 
   // Method of multipliers iterations (step QPs) of the last call.
   int iterations() const { return iterations_; }
