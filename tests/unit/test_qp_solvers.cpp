@@ -348,6 +348,55 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   EXPECT_EQ(factor_changes[3], factor_changes[2]);      // and stays
 }
 
+TEST(QPSolvers, PdasCountsTheSolvesOfOneStepAsOneAndSolvesThemToRoundOffWhenAsked) {
+  // As above, but each step solves its QP twice (a second right-hand side, as the
+  // discrete gradient's energy correction does): the set has then served five solves
+  // by the third step, yet only three steps, so the factor catches up at the third
+  // step as above, not at the second.  A repeat asked to round-off is solved by the
+  // factor brought to its set: to the direct solve's accuracy, where CG stops at tol.
+  const BoundQP qp = random_problem(20, 20, 7, false);
+  const QPResult solution = cdyn::PDASSolver().solve(qp);
+  BoundQP again = qp;
+  again.r *= 1.0 + 1e-9;  // the same active set, another right-hand side
+  const QPResult again_solution = cdyn::PDASSolver().solve(again);
+  ASSERT_EQ(again_solution.active, solution.active);
+  BoundQP unbounded = qp;
+  unbounded.lower.setConstant(-std::numeric_limits<double>::infinity());
+  unbounded.upper.setConstant(std::numeric_limits<double>::infinity());
+  QPOptions cg_always;
+  cg_always.pdas_cg_always = true;
+  cdyn::PDASSolver pdas(cg_always);
+  pdas.solve(unbounded);
+  const auto c0 = pdas.counters();
+  auto factor_changes = [&] {
+    return pdas.counters().factorizations + pdas.counters().row_updates - c0.factorizations - c0.row_updates;
+  };
+  std::vector<int> changes;
+  for (int step = 0; step < 3; ++step) {
+    const QPResult r = pdas.solve(qp, &solution);
+    pdas.next_in_same_step(false);
+    const QPResult r2 = pdas.solve(again, &r);
+    EXPECT_LE((r2.X - again_solution.X).lpNorm<Eigen::Infinity>(), 1e-10);
+    changes.push_back(factor_changes());
+  }
+  EXPECT_EQ(changes[0], 0);
+  EXPECT_EQ(changes[1], 0);  // five solves, two steps: not settled
+  EXPECT_GT(changes[2], 0);  // the third step's first solve brought the factor to the set
+
+  // A fresh solver on CG, its repeat asked to round-off: the factor, not CG.
+  cdyn::PDASSolver fresh(cg_always);
+  fresh.solve(unbounded);
+  const auto c1 = fresh.counters();
+  const QPResult r = fresh.solve(qp, &solution);
+  EXPECT_EQ(fresh.counters().row_updates + fresh.counters().factorizations, c1.row_updates + c1.factorizations);
+  fresh.next_in_same_step(true);
+  const int cg_before = fresh.counters().cg_solves;
+  const QPResult exact = fresh.solve(again, &r);
+  EXPECT_EQ(fresh.counters().cg_solves, cg_before);
+  EXPECT_GT(fresh.counters().row_updates + fresh.counters().factorizations, c1.row_updates + c1.factorizations);
+  EXPECT_LE((exact.X - again_solution.X).lpNorm<Eigen::Infinity>(), 1e-13 * again_solution.X.lpNorm<Eigen::Infinity>());
+}
+
 TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   // A cold start whose every system is solved by CG (the factor is that of S with no
   // active bound): the iterates are solved loosely (reduced_system.cpp kLooseSolve) and the

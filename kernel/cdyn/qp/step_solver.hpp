@@ -31,6 +31,13 @@ class StepSolver {
   // starts with a new solver; the run that wrote the checkpoint clears its own there,
   // so that both go on alike (schemes/scheme_memory.hpp).
   virtual void clear() {}
+  // The next solve is the last one's time step again, with another right-hand side (a
+  // scheme's iteration within a step, as the discrete gradient's energy correction): a
+  // solver that learns from the sequence of steps (pdas's settled active sets) does not
+  // count it as a step of its own.  to_round_off: the scheme needs more of it than the
+  // tolerance (an energy correction stalled on the solves' errors): a solver with a
+  // factorization solves by it (pdas: its factor brought to the active set, not CG).
+  virtual void next_in_same_step(bool /*to_round_off*/) {}
 };
 
 // name: one of step_solver_names(); anything else is an InputError.

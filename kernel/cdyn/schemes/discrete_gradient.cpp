@@ -182,10 +182,12 @@ class DiscreteGradient final : public StepQPScheme {
       it.qp = last_point();
       it.full_step = full_step_.last_point();
     };
-    auto iterate = [&](double beta, const Eigen::VectorXd* d) {
+    // to_round_off: the solve by a factorization, not by CG to the QP tolerance (below).
+    auto iterate = [&](double beta, const Eigen::VectorXd* d, bool to_round_off) {
       StepStats qp;
       Iterate it;
       it.beta = beta;
+      if (d) solver_.next_in_same_step(to_round_off);  // (the step's β = 0 solve came first)
       it.X = solve(d ? Eigen::VectorXd(r0 - 2 * beta * *d) : r0, trial_state, qp);
       stats.qp_iterations += qp.qp_iterations;
       stats.qp_seconds += qp.qp_seconds;
@@ -269,13 +271,18 @@ class DiscreteGradient final : public StepQPScheme {
       return std::abs(root - secant_root) <= std::abs(secant_root - x2.beta) ? root : secant_root;
     };
 
-    Iterate a = iterate(0.0, nullptr);
+    Iterate a = iterate(0.0, nullptr, false);
     if (!small_energy(a)) {
       keep_points(a);  // (no solve since a's)
       const Eigen::VectorXd d = a.MD;
-      Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &d);
+      Iterate b = iterate(a.dq2 > 0 ? a.dH / a.dq2 : 0.0, &d, false);
       std::optional<Iterate> z;  // the iterate before a
       bool interpolating = true;
+      // An iterate that does not halve |ΔH| has met the solves' own errors (a solve by CG
+      // stops at the QP tolerance, whose energy error may exceed energy_tol: measured on
+      // the damped disk at tol = 1e-10, ΔH stuck at 6e-12 of its terms while β moved):
+      // the step's next solves to round-off.
+      bool to_round_off = !(std::abs(b.dH) <= 0.5 * std::abs(a.dH));
       for (int k = 0;; ++k) {
         // |β| ≥ c²: the correction 2β d would undo more than half of the step's inertia
         // 4c² M D₀ — the switch is too stiff for the step: halve it
@@ -293,7 +300,8 @@ class DiscreteGradient final : public StepQPScheme {
           predicted.reset();
           interpolating = false;
         }
-        Iterate c_it = predicted ? std::move(*predicted) : iterate(next, &d);
+        Iterate c_it = predicted ? std::move(*predicted) : iterate(next, &d, to_round_off);
+        if (!(std::abs(c_it.dH) <= 0.5 * std::abs(b.dH))) to_round_off = true;
         z = std::move(a);
         a = std::move(b);
         b = std::move(c_it);

@@ -17,10 +17,11 @@
 //     S — the condensed P1+/P0 step matrix — a CG iteration costs a seventh of a
 //     forward/back solve, against hundreds of row updates (≈ 0.1 solve each) or a
 //     factorization when the contact zone jumps;
-//   - once an active set has served three calls in a row the contact zone has settled,
-//     and the factor is brought to it (resync_due), so that the coming steps are one
-//     forward/back solve each again — where that pays (resync_pays): the settled sets
-//     seen so far tell how many more calls one serves, and a contact zone that settles
+//   - once an active set has served three calls (time steps: a scheme's repeated solves
+//     of one step count once, StepSolver::next_in_same_step) in a row the contact zone
+//     has settled, and the factor is brought to it (resync_due), so that the coming
+//     steps are one forward/back solve each again — where that pays (resync_pays): the
+//     settled sets seen so far tell how many more calls one serves, and a contact zone that settles
 //     for a few steps and moves again (chattering) does not repay a refactorization;
 //   - when most unknowns are held (resting contact: a body lying on the obstacle), S̃
 //     in S's pattern still has the fill of the whole S, while the free block S_II alone,
@@ -60,6 +61,12 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool last_inexact() const override { return last_by_cg_; }
   void resume_next() override { resume_cg_ = true; }
   void set_first_guess(const Eigen::VectorXd& X) override { y_last_ = X; }
+  // The next prepare() is the last call's time step again, its systems solved by the
+  // factor if to_round_off (StepSolver::next_in_same_step).
+  void next_in_same_step(bool to_round_off) {
+    same_step_next_ = true;
+    round_off_next_ = to_round_off;
+  }
   bool refactorization_may_help() const override {
     return !opt_.pdas_cg_only && (cg_mode_ || updates_since_factorization_ > 0);
   }
@@ -106,7 +113,10 @@ class ExplicitReducedSystem : public ReducedSystem {
   HeldSet cg_held_;
   int cg_since_sync_ = 0;                 // CG iterations since the factor was last (re)made
   int cg_mode_uses_ = 0;                  // calls in a row that used cg_held_ (resync_due)
-  int calls_ = 0, cg_held_call_ = 0;      // prepare() calls so far; the last that used cg_held_
+  int calls_ = 0, cg_held_call_ = 0;      // time steps (prepare() calls) so far; the last that used cg_held_
+  bool same_step_next_ = false;           // the next prepare() is the last one's step again
+  bool round_off_next_ = false;           // and its systems are solved by the factor
+  bool by_factor_ = false;                // this call's are (set_held)
   std::optional<MaskedCG> cg_;            // CG on S_ (its preconditioner, work vectors, last residual)
   Eigen::VectorXd y_last_;                // the last solution of solve_tilde: CG's first guess
   double last_cg_residual_ = 0.0;         // CG's scaled residual in the last solve_tilde (0: by the factor)

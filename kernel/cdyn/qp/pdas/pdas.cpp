@@ -110,6 +110,10 @@ void PDASSolver::clear() {
   impl_ = std::make_unique<Impl>();
   impl_->opt = options;
 }
+void PDASSolver::next_in_same_step(bool to_round_off) {
+  // (the saddle form keeps no such count, and solves by its LU)
+  impl_->explicit_system.next_in_same_step(to_round_off);
+}
 const PDASSolver::Counters& PDASSolver::counters() const { return impl_->counters; }
 
 QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {

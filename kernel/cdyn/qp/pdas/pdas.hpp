@@ -53,6 +53,7 @@ class PDASSolver : public StepSolver {
   std::string name() const override { return "pdas"; }
   QPResult solve(const BoundQP& qp, const QPResult* warm_start = nullptr) override;
   void clear() override;
+  void next_in_same_step(bool to_round_off) override;
 
   // Work done since construction or the last clear() (for tests and benchmarks; cg_pays
   // steers by the CG counts): analyses, factorizations,
