@@ -313,6 +313,43 @@ TEST(QPSolvers, PdasFreeBlockFactorGivesTheAnswerOfTheWholeFactor) {
   EXPECT_GT(b.counters().analyses, a.counters().analyses);
 }
 
+TEST(QPSolvers, PdasFreeBlockFollowsAFewSwitchingUnknownsByRowUpdates) {
+  // As above, the lifted patch now growing by a tenth of a cell a step: each new set
+  // frees a few unknowns (8–20) next to the free ones, within the block's margin (the
+  // held neighbours of I), so the block factor follows them by row updates — no new
+  // analysis after the first block (without the margin, one per step) — and gives the
+  // whole factor's answer to round-off.
+  const int k = 60, n = k * k;
+  std::mt19937 gen(17);
+  BoundQP qp;
+  qp.S = grid_matrix(k, k, gen, true);
+  qp.lower = VectorXd::Zero(n);
+  qp.upper = VectorXd::Constant(n, inf);
+  QPOptions whole;
+  whole.pdas_free_block = 0.0;
+  whole.pdas_cg_iterations = 0;
+  QPOptions block = whole;
+  block.pdas_free_block = 1.0;
+  cdyn::PDASSolver a(whole), b(block);
+  QPResult ra, rb;
+  int analyses_after_first = 0;
+  for (int step = 0; step < 6; ++step) {
+    const double radius = 10.0 + 0.1 * step;
+    qp.r = VectorXd::Constant(n, -1.0);
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i)
+        if (std::hypot(i - k / 2.0, j - k / 2.0) < radius) qp.r[j * k + i] = 5.0;
+    ra = a.solve(qp, step ? &ra : nullptr);
+    rb = b.solve(qp, step ? &rb : nullptr);
+    if (step == 0) analyses_after_first = b.counters().analyses;
+    EXPECT_EQ(ra.active, rb.active);
+    EXPECT_LE((ra.X - rb.X).lpNorm<Eigen::Infinity>(), 1e-12 * ra.X.lpNorm<Eigen::Infinity>());
+    EXPECT_LE(rb.kkt_residual, 1e-10);
+  }
+  EXPECT_GT(b.counters().row_updates, 0);
+  EXPECT_EQ(b.counters().analyses, analyses_after_first);
+}
+
 TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   // A solver whose factor is that of S with no active bound (its first call had no
   // bounds), then the bounded QP solved again and again from its own solution, as in a
