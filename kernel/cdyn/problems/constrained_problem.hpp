@@ -116,6 +116,7 @@ struct ConstrainedProblem {
   const CachedLoad& cached_load(double t) const;
   mutable std::array<CachedLoad, 3> load_cache_;
   mutable int load_cache_size_ = 0, load_cache_next_ = 0;
+  mutable Eigen::VectorXd lift_force_;  // (A U_D)_f, made by the first load() (A_full, U_D fixed by then)
 };
 
 }  // namespace cdyn
