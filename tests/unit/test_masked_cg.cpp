@@ -36,14 +36,16 @@ cdyn::SparseMatrix random_spd(int n, std::mt19937& gen) {
   return s;
 }
 
-TEST(MaskedCG, SolvesTheReducedSystemToItsScaledResidual) {
+// mostly_held: three rows in four held instead of one, so that CG iterates on the free
+// rows alone (masked_cg.cpp: fewer than half of the rows free).
+void solves_the_reduced_system_to_its_scaled_residual(bool mostly_held) {
   std::mt19937 gen(3);
   const int n = 60;
   const cdyn::SparseMatrix S = random_spd(n, gen);
   const MatrixXd Sd(S);
   const VectorXd D = Sd.diagonal();
   std::vector<char> held(n, 0);
-  for (int i = 0; i < n; i += 4) held[i] = 1;
+  for (int i = 0; i < n; ++i) held[i] = (i % 4 == 0) != mostly_held;
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   VectorXd b(n);
   for (int i = 0; i < n; ++i) b[i] = U(gen);
@@ -64,9 +66,14 @@ TEST(MaskedCG, SolvesTheReducedSystemToItsScaledResidual) {
   for (int a = 0; a < m; ++a) DinvS.row(a) /= SII(a, a);
   const double inverse_norm = DinvS.inverse().cwiseAbs().rowwise().sum().maxCoeff();  // ‖(D⁻¹S_II)⁻¹‖_∞
 
+  // One iteration object for all solves, first used with nothing held: its work vectors
+  // then hold values on the rows this test holds.
+  cdyn::MaskedCG cg(S);
+  VectorXd y_other;
+  ASSERT_TRUE(cg.solve(std::vector<char>(n, 0), b, y_other, 1e-12, 200).converged);
   for (const double tol : {1e-4, 1e-10, 1e-14}) {
     VectorXd y = VectorXd::Constant(n, 0.3);  // a first guess of the wrong values on A too
-    const cdyn::MaskedCGResult res = cdyn::masked_cg(S, held, b, y, tol, 200);
+    const cdyn::MaskedCGResult res = cg.solve(held, b, y, tol, 200);
     ASSERT_TRUE(res.converged) << tol;
     EXPECT_LE(res.iterations, m) << tol;
     double scaled = 0.0, error = 0.0;
@@ -97,6 +104,11 @@ TEST(MaskedCG, SolvesTheReducedSystemToItsScaledResidual) {
   EXPECT_EQ(again.iterations, 0);
 }
 
+TEST(MaskedCG, SolvesTheReducedSystemToItsScaledResidual) { solves_the_reduced_system_to_its_scaled_residual(false); }
+TEST(MaskedCG, SolvesTheReducedSystemOnItsFreeRowsWhenMostAreHeld) {
+  solves_the_reduced_system_to_its_scaled_residual(true);
+}
+
 TEST(MaskedCG, ReportsAMissedToleranceWithinTheCap) {
   std::mt19937 gen(5);
   const int n = 40;
@@ -118,12 +130,13 @@ namespace {
 // resume: the iteration interrupted at a loose tolerance and continued to a tight one
 // performs the same floating-point operations as one uninterrupted solve, so it ends
 // with the same iterate bit for bit after the same number of iterations.
-TEST(MaskedCG, ResumingIsTheUninterruptedIteration) {
+// (mostly_held: four rows in five held, CG on the free rows alone)
+void resuming_is_the_uninterrupted_iteration(bool mostly_held) {
   std::mt19937 gen(7);
   const int n = 80;
   const cdyn::SparseMatrix S = random_spd(n, gen);
   std::vector<char> held(n, 0);
-  for (int i = 1; i < n; i += 5) held[i] = 1;
+  for (int i = 0; i < n; ++i) held[i] = (i % 5 == 1) != mostly_held;
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   VectorXd b(n);
   for (int i = 0; i < n; ++i) b[i] = U(gen);
@@ -150,5 +163,8 @@ TEST(MaskedCG, ResumingIsTheUninterruptedIteration) {
       EXPECT_NEAR(twice.residual()[i], b[i] - Sy[i], 1e-12) << i;
     }
 }
+
+TEST(MaskedCG, ResumingIsTheUninterruptedIteration) { resuming_is_the_uninterrupted_iteration(false); }
+TEST(MaskedCG, ResumingOnTheFreeRowsIsTheUninterruptedIteration) { resuming_is_the_uninterrupted_iteration(true); }
 
 }  // namespace

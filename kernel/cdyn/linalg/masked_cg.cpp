@@ -70,6 +70,52 @@ void next_direction(int n, const double* r_hat, double beta, double* p) {
   for (int i = 0; i < n; ++i) p[i] = r_hat[i] + beta * p[i];
 }
 
+// The same three on the free rows I alone (listed in increasing order): the vectors
+// vanish on the held rows, where the whole-vector loops only add zeros.  The sums by
+// blocks of kBlock entries of the list, the same on any number of threads.
+double dot_on(const std::vector<int>& I, const double* x, const double* y, std::vector<double>& block_sum) {
+  const int m = static_cast<int>(I.size()), blocks = block_count(m);
+  block_sum.resize(blocks);
+#pragma omp parallel for schedule(static) if (2L * m >= kParallelWork)
+  for (int b = 0; b < blocks; ++b) {
+    const int end = std::min(m, (b + 1) * kBlock);
+    double s = 0.0;
+    for (int k = b * kBlock; k < end; ++k) s += x[I[k]] * y[I[k]];
+    block_sum[b] = s;
+  }
+  double s = 0.0;
+  for (double v : block_sum) s += v;
+  return s;
+}
+Sweep update_on(const std::vector<int>& I, double alpha, const double* t, const double* q,
+                const double* inverse_sqrt_d, double* y, double* r_hat, std::vector<double>& block_rr) {
+  const int m = static_cast<int>(I.size()), blocks = block_count(m);
+  block_rr.resize(blocks);
+  double proxy = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : proxy) if (5L * m >= kParallelWork)
+  for (int b = 0; b < blocks; ++b) {
+    const int end = std::min(m, (b + 1) * kBlock);
+    double rr = 0.0, block_proxy = 0.0;
+    for (int k = b * kBlock; k < end; ++k) {
+      const int i = I[k];
+      y[i] += alpha * t[i] * inverse_sqrt_d[i];
+      r_hat[i] -= alpha * q[i];
+      rr += r_hat[i] * r_hat[i];
+      block_proxy = std::max(block_proxy, std::abs(r_hat[i]) * inverse_sqrt_d[i]);
+    }
+    block_rr[b] = rr;
+    proxy = std::max(proxy, block_proxy);
+  }
+  double rr = 0.0;
+  for (double s : block_rr) rr += s;
+  return {rr, proxy};
+}
+void next_direction_on(const std::vector<int>& I, const double* r_hat, double beta, double* p) {
+  const int m = static_cast<int>(I.size());
+#pragma omp parallel for schedule(static) if (2L * m >= kParallelWork)
+  for (int k = 0; k < m; ++k) p[I[k]] = r_hat[I[k]] + beta * p[I[k]];
+}
+
 }  // namespace
 
 MaskedCG::MaskedCG(const SparseMatrix& S)
@@ -96,7 +142,10 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
       result.converged = true;
       return result;
     }
-    next_direction(n, r_hat_.data(), rr_next_ / rr_, p_.data());
+    if (compact_)
+      next_direction_on(free_, r_hat_.data(), rr_next_ / rr_, p_.data());
+    else
+      next_direction(n, r_hat_.data(), rr_next_ / rr_, p_.data());
     rr_ = rr_next_;
   } else {
     if (y.size() != n) y = Eigen::VectorXd::Zero(n);
@@ -120,11 +169,36 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     sgs_.solve_lower(held, q_.data(), r_hat_.data());
     rr_ = dot(r_hat_, r_hat_);
     p_ = r_hat_;
+    // Most rows held (resting contact, a chattering contact zone): the iterations visit
+    // the free rows alone.  Every vector of the iteration is 0 on the held rows, and the
+    // whole-vector sweeps spent most of their time writing those zeros (a chattering
+    // membrane at n = 160, 97 % of the unknowns held: 40 % of its steps' time in the
+    // preconditioner's sweeps).
+    const long n_free = std::count(held.begin(), held.end(), 0);
+    compact_ = 2 * n_free < n;
+    if (compact_) {
+      free_.clear();
+      for (int i = 0; i < n; ++i)
+        if (!held[i]) free_.push_back(i);
+      free_rows_ = sgs_.free_rows(held);
+      t_.setZero();  // (the held rows' entries, which the sweeps read and never write)
+      w_.setZero();
+      q_.setZero();
+    }
   }
   for (int k = 1; k <= max_iterations; ++k) {
-    const double alpha = rr_ / sgs_.apply(held, p_.data(), t_.data(), w_.data(), q_.data());
+    double pq;
+    if (compact_) {
+      sgs_.apply(free_rows_, p_.data(), t_.data(), w_.data(), q_.data());
+      pq = dot_on(free_, p_.data(), q_.data(), block_rr_);
+    } else {
+      pq = sgs_.apply(held, p_.data(), t_.data(), w_.data(), q_.data());
+    }
+    const double alpha = rr_ / pq;
     const Sweep sweep =
-        update(n, alpha, t_.data(), q_.data(), inverse_sqrt_D_.data(), y.data(), r_hat_.data(), block_rr_);
+        compact_ ? update_on(free_, alpha, t_.data(), q_.data(), inverse_sqrt_D_.data(), y.data(), r_hat_.data(),
+                             block_rr_)
+                 : update(n, alpha, t_.data(), q_.data(), inverse_sqrt_D_.data(), y.data(), r_hat_.data(), block_rr_);
     result.iterations = k;
     if (!std::isfinite(sweep.rr)) {  // (a NaN passes max() unseen, not a sum)
       result.scaled_residual = sweep.rr;
@@ -139,7 +213,10 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
         return result;
       }
     }
-    next_direction(n, r_hat_.data(), sweep.rr / rr_, p_.data());
+    if (compact_)
+      next_direction_on(free_, r_hat_.data(), sweep.rr / rr_, p_.data());
+    else
+      next_direction(n, r_hat_.data(), sweep.rr / rr_, p_.data());
     rr_ = sweep.rr;
   }
   result.scaled_residual = unprecondition();

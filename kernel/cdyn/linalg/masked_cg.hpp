@@ -69,6 +69,10 @@ class MaskedCG {
   Eigen::VectorXd D_, inverse_sqrt_D_;  // diag(S), diag(S)^{-1/2}
   Eigen::VectorXd r_, r_hat_, p_, t_, w_, q_;
   std::vector<double> block_rr_;  // the blocks' shares of r̂ᵀr̂ (linalg/parallel.hpp)
+  // most rows held: the iterations on the free rows alone (free_, in increasing order)
+  bool compact_ = false;
+  std::vector<int> free_;
+  SymmetricGaussSeidel::FreeRows free_rows_;
   // the state an iteration that converged stops in, for resume
   bool resumable_ = false;
   double rr_ = 0.0, rr_next_ = 0.0, last_scaled_ = 0.0;  // r̂ᵀr̂ for p_, r̂ᵀr̂ now, the test's value

@@ -127,4 +127,42 @@ double SymmetricGaussSeidel::apply(const std::vector<char>& held, const double* 
   return dot(n, v, q);
 }
 
+SymmetricGaussSeidel::FreeRows SymmetricGaussSeidel::free_rows(const std::vector<char>& held) const {
+  FreeRows f;
+  f.colour_start.assign(1, 0);
+  for (int c = 0; c < colours(); ++c) {
+    for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k)
+      if (!held[rows_[k]]) f.position.push_back(k);
+    f.colour_start.push_back(static_cast<int>(f.position.size()));
+  }
+  return f;
+}
+
+// The sweeps of apply() over the free rows: the held rows' t and w, which the free rows
+// read, are 0 already.
+void SymmetricGaussSeidel::apply(const FreeRows& free, const double* v, double* t, double* w, double* q) const {
+  const int colours = static_cast<int>(free.colour_start.size()) - 1;
+#pragma omp parallel if (threaded())
+  {
+    for (int c = colours - 1; c >= 0; --c) {
+#pragma omp for schedule(static)
+      for (int m = free.colour_start[c]; m < free.colour_start[c + 1]; ++m) {
+        const int k = free.position[m];
+        const int i = rows_[k];
+        t[i] = minus_row(upper_, k, v[i], t);
+      }
+    }
+    for (int c = 0; c < colours; ++c) {
+#pragma omp for schedule(static)
+      for (int m = free.colour_start[c]; m < free.colour_start[c + 1]; ++m) {
+        const int k = free.position[m];
+        const int i = rows_[k];
+        const double s = minus_row(lower_, k, v[i] - t[i], w);
+        w[i] = s;
+        q[i] = t[i] + s;
+      }
+    }
+  }
+}
+
 }  // namespace cdyn

@@ -49,6 +49,17 @@ class SymmetricGaussSeidel {
 
   // q = Â v and t = L̂⁻ᵀ v (w: work vector); returns vᵀq.
   double apply(const std::vector<char>& held, const double* v, double* t, double* w, double* q) const;
+
+  // The free rows of a held set in sweep order, by colour: for sweeps that visit those
+  // rows only, when most rows are held (their t, w, q are 0 and stay so).
+  struct FreeRows {
+    std::vector<int> position;      // k: rows_[k] free, increasing within each colour
+    std::vector<int> colour_start;  // position[colour_start[c] .. colour_start[c+1]) have colour c
+  };
+  FreeRows free_rows(const std::vector<char>& held) const;
+  // apply() on the free rows alone: q_I = (Â v)_I and t_I = (L̂⁻ᵀ v)_I, with t, w, q 0
+  // on the held rows on entry (left so).
+  void apply(const FreeRows& free, const double* v, double* t, double* w, double* q) const;
   // out = L̂⁻¹ in (forward sweep).
   void solve_lower(const std::vector<char>& held, const double* in, double* out) const;
   // out = L̂ in (in_A = 0 assumed).
