@@ -276,78 +276,78 @@ TEST(QPSolvers, PdasRowUpdatesGiveTheSameAnswerAsRefactorization) {
             << b.counters().factorizations << " factorizations + " << b.counters().row_updates << " row updates\n";
 }
 
-TEST(QPSolvers, PdasFreeBlockFactorGivesTheAnswerOfTheWholeFactor) {
-  // Resting contact: a body on the obstacle u ≥ 0 pushed onto it everywhere except in a
-  // patch that grows step by step (lift-off), so that most unknowns are held.  The
-  // factor of the free block S_II alone (QPOptions::pdas_free_block) and that of S̃ in
-  // S's pattern are two factorizations of the same reduced system: the same active sets
-  // and the same solution to round-off (asserted 1e-12 relative: both are direct solves
-  // of a system whose condition here is O(10)).
-  const int k = 40, n = k * k;
+// Resting contact on a k × k grid: a body on the obstacle u ≥ 0 pushed onto it
+// everywhere except in a patch of radius r0 + dr·step cells that grows step by step
+// (lift-off), so that most unknowns are held.  Six steps solved by `whole` (the factor of
+// S̃ in S's pattern) and by `block` (QPOptions::pdas_free_block), CG off: two
+// factorizations of the same reduced system, so the same active sets and the same
+// solution to round-off (asserted 1e-12 relative: both are direct solves of a system
+// whose condition here is O(10)).  Returns block's analyses after the first step.
+int lift_off(int k, double r0, double dr, cdyn::PDASSolver& whole, cdyn::PDASSolver& block) {
+  const int n = k * k;
   std::mt19937 gen(17);
   BoundQP qp;
   qp.S = grid_matrix(k, k, gen, true);
   qp.lower = VectorXd::Zero(n);
   qp.upper = VectorXd::Constant(n, inf);
-  QPOptions whole;
-  whole.pdas_free_block = 0.0;
-  whole.pdas_cg_iterations = 0;  // (CG off: this compares the factorizations)
-  QPOptions block = whole;
-  block.pdas_free_block = 1.0;
-  cdyn::PDASSolver a(whole), b(block);
   QPResult ra, rb;
+  int analyses_after_first = 0;
   for (int step = 0; step < 6; ++step) {
-    const double radius = 3.0 + 2.0 * step;  // the lifted patch, in grid cells
+    const double radius = r0 + dr * step;
     qp.r = VectorXd::Constant(n, -1.0);
     for (int j = 0; j < k; ++j)
       for (int i = 0; i < k; ++i)
         if (std::hypot(i - k / 2.0, j - k / 2.0) < radius) qp.r[j * k + i] = 5.0;
-    ra = a.solve(qp, step ? &ra : nullptr);
-    rb = b.solve(qp, step ? &rb : nullptr);
+    ra = whole.solve(qp, step ? &ra : nullptr);
+    rb = block.solve(qp, step ? &rb : nullptr);
+    if (step == 0) analyses_after_first = block.counters().analyses;
     EXPECT_GT(static_cast<int>(rb.active.size()), n / 2);
     EXPECT_EQ(ra.active, rb.active);
     EXPECT_LE((ra.X - rb.X).lpNorm<Eigen::Infinity>(), 1e-12 * ra.X.lpNorm<Eigen::Infinity>());
     EXPECT_LE(rb.kkt_residual, 1e-10);
   }
+  return analyses_after_first;
+}
+
+// The options of lift_off's two solvers: the free block always (1) or never (0), no CG.
+QPOptions free_block_options(double fraction) {
+  QPOptions o;
+  o.pdas_free_block = fraction;
+  o.pdas_cg_iterations = 0;
+  return o;
+}
+
+TEST(QPSolvers, PdasFreeBlockFactorGivesTheAnswerOfTheWholeFactor) {
+  cdyn::PDASSolver a(free_block_options(0.0)), b(free_block_options(1.0));
+  lift_off(40, 3.0, 2.0, a, b);
   // the free block was factorized (and analysed for each new free set)
   EXPECT_GT(b.counters().analyses, a.counters().analyses);
 }
 
 TEST(QPSolvers, PdasFreeBlockFollowsAFewSwitchingUnknownsByRowUpdates) {
-  // As above, the lifted patch now growing by a tenth of a cell a step: each new set
-  // frees a few unknowns (8–20) next to the free ones, within the block's margin (the
-  // held neighbours of I), so the block factor follows them by row updates — no new
-  // analysis after the first block (without the margin, one per step) — and gives the
-  // whole factor's answer to round-off.
-  const int k = 60, n = k * k;
-  std::mt19937 gen(17);
-  BoundQP qp;
-  qp.S = grid_matrix(k, k, gen, true);
-  qp.lower = VectorXd::Zero(n);
-  qp.upper = VectorXd::Constant(n, inf);
-  QPOptions whole;
-  whole.pdas_free_block = 0.0;
-  whole.pdas_cg_iterations = 0;
-  QPOptions block = whole;
-  block.pdas_free_block = 1.0;
-  cdyn::PDASSolver a(whole), b(block);
-  QPResult ra, rb;
-  int analyses_after_first = 0;
-  for (int step = 0; step < 6; ++step) {
-    const double radius = 10.0 + 0.1 * step;
-    qp.r = VectorXd::Constant(n, -1.0);
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i)
-        if (std::hypot(i - k / 2.0, j - k / 2.0) < radius) qp.r[j * k + i] = 5.0;
-    ra = a.solve(qp, step ? &ra : nullptr);
-    rb = b.solve(qp, step ? &rb : nullptr);
-    if (step == 0) analyses_after_first = b.counters().analyses;
-    EXPECT_EQ(ra.active, rb.active);
-    EXPECT_LE((ra.X - rb.X).lpNorm<Eigen::Infinity>(), 1e-12 * ra.X.lpNorm<Eigen::Infinity>());
-    EXPECT_LE(rb.kkt_residual, 1e-10);
-  }
+  // The patch growing by a tenth of a cell a step: each new set frees a few unknowns
+  // (8–20) next to the free ones, within the block's margin (the held neighbours of I),
+  // so the block factor follows them by row updates — no new analysis after the first
+  // block (without the margin, one per step) — and gives the whole factor's answer.
+  cdyn::PDASSolver a(free_block_options(0.0)), b(free_block_options(1.0));
+  const int analyses_after_first = lift_off(60, 10.0, 0.1, a, b);
   EXPECT_GT(b.counters().row_updates, 0);
   EXPECT_EQ(b.counters().analyses, analyses_after_first);
+}
+
+// The CG path's set-up: a solver that takes CG for every new set (pdas_cg_always: at
+// 400 unknowns the flop counts of cg_pays would choose a refactorization), and its
+// factor that of S with no active bound (a first call without bounds).
+QPOptions cg_always() {
+  QPOptions o;
+  o.pdas_cg_always = true;
+  return o;
+}
+void factorize_without_bounds(cdyn::PDASSolver& pdas, const BoundQP& qp) {
+  BoundQP unbounded = qp;
+  unbounded.lower.setConstant(-std::numeric_limits<double>::infinity());
+  unbounded.upper.setConstant(std::numeric_limits<double>::infinity());
+  pdas.solve(unbounded);
 }
 
 TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
@@ -362,13 +362,8 @@ TEST(QPSolvers, PdasSolvesANewActiveSetByCgUntilItSettles) {
   const BoundQP qp = random_problem(20, 20, 7, false);
   const QPResult solution = cdyn::PDASSolver().solve(qp);
   ASSERT_GT(std::count_if(solution.active.begin(), solution.active.end(), [](auto a) { return a != 0; }), 0);
-  BoundQP unbounded = qp;
-  unbounded.lower.setConstant(-std::numeric_limits<double>::infinity());
-  unbounded.upper.setConstant(std::numeric_limits<double>::infinity());
-  QPOptions cg_always;
-  cg_always.pdas_cg_always = true;
-  cdyn::PDASSolver pdas(cg_always);
-  pdas.solve(unbounded);
+  cdyn::PDASSolver pdas(cg_always());
+  factorize_without_bounds(pdas, qp);
   const auto c0 = pdas.counters();
   std::vector<int> cg_solves, factor_changes;
   for (int call = 0; call < 4; ++call) {
@@ -397,13 +392,8 @@ TEST(QPSolvers, PdasCountsTheSolvesOfOneStepAsOneAndSolvesThemToRoundOffWhenAske
   again.r *= 1.0 + 1e-9;  // the same active set, another right-hand side
   const QPResult again_solution = cdyn::PDASSolver().solve(again);
   ASSERT_EQ(again_solution.active, solution.active);
-  BoundQP unbounded = qp;
-  unbounded.lower.setConstant(-std::numeric_limits<double>::infinity());
-  unbounded.upper.setConstant(std::numeric_limits<double>::infinity());
-  QPOptions cg_always;
-  cg_always.pdas_cg_always = true;
-  cdyn::PDASSolver pdas(cg_always);
-  pdas.solve(unbounded);
+  cdyn::PDASSolver pdas(cg_always());
+  factorize_without_bounds(pdas, qp);
   const auto c0 = pdas.counters();
   auto factor_changes = [&] {
     return pdas.counters().factorizations + pdas.counters().row_updates - c0.factorizations - c0.row_updates;
@@ -421,8 +411,8 @@ TEST(QPSolvers, PdasCountsTheSolvesOfOneStepAsOneAndSolvesThemToRoundOffWhenAske
   EXPECT_GT(changes[2], 0);  // the third step's first solve brought the factor to the set
 
   // A fresh solver on CG, its repeat asked to round-off: the factor, not CG.
-  cdyn::PDASSolver fresh(cg_always);
-  fresh.solve(unbounded);
+  cdyn::PDASSolver fresh(cg_always());
+  factorize_without_bounds(fresh, qp);
   const auto c1 = fresh.counters();
   const QPResult r = fresh.solve(qp, &solution);
   EXPECT_EQ(fresh.counters().row_updates + fresh.counters().factorizations, c1.row_updates + c1.factorizations);
@@ -445,13 +435,8 @@ TEST(QPSolvers, PdasOnLooseCgIteratesEndsAtTheToleranceAndTheDirectSolution) {
   QPOptions direct_options;
   direct_options.pdas_cg_iterations = 0;
   const QPResult direct = cdyn::PDASSolver(direct_options).solve(qp);
-  BoundQP unbounded = qp;
-  unbounded.lower.setConstant(-inf);
-  unbounded.upper.setConstant(inf);
-  QPOptions cg_always;
-  cg_always.pdas_cg_always = true;
-  cdyn::PDASSolver pdas(cg_always);
-  pdas.solve(unbounded);
+  cdyn::PDASSolver pdas(cg_always());
+  factorize_without_bounds(pdas, qp);
   const auto c0 = pdas.counters();
   const QPResult r = pdas.solve(qp);
   const int cg_solves = pdas.counters().cg_solves - c0.cg_solves;
