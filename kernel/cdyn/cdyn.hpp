@@ -69,6 +69,7 @@
 #include "cdyn/qp/nlopt.hpp"
 #endif
 #include "cdyn/qp/pdas/explicit_reduced_system.hpp"
+#include "cdyn/qp/pdas/free_block_factor.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
 #include "cdyn/qp/pdas/projected_newton.hpp"
 #include "cdyn/qp/pdas/reduced_system.hpp"

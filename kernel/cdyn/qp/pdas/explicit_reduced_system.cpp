@@ -3,7 +3,6 @@
 #include "cdyn/qp/pdas/explicit_reduced_system.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
@@ -22,17 +21,6 @@ bool has_diagonal(const SparseMatrix& M, int n) {
   }
   return true;
 }
-
-// Adds the wall time of its scope to a counter (PDASCounters' *_s).
-class ScopeTimer {
- public:
-  explicit ScopeTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
-  ~ScopeTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
- private:
-  double& seconds_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 }  // namespace
 
@@ -72,7 +60,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
     updates_measured_ = 0;
   }
   S_tilde_ = S_;
-  factorize(chol_, S_, "S is not positive definite (CHOLMOD: the factorization breaks down");
+  factorize_counted(chol_, S_, "S is not positive definite (CHOLMOD: the factorization breaks down", counters_);
   factor_held_.assign(n_, 0);
   block_mode_ = false;
   updates_since_factorization_ = 0;
@@ -82,140 +70,18 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   if (opt_.pdas_cg_iterations > 0) cg_.emplace(S_);  // (references the member S_)
 }
 
-// A numeric factorization of `matrix` by `factor` (timed, counted); NumericalError
-// "pdas: <what> at unknown i)" if CHOLMOD finds it not positive definite, i the QP's
-// unknown (unknowns[row] when the matrix is a block of S).
-void ExplicitReducedSystem::factorize(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
-                                      const std::vector<int>* unknowns) {
-  ScopeTimer timer(counters_.factorization_s);
-  const int minor = factor.factorize(matrix);
-  ++counters_.factorizations;
-  if (minor >= 0)
-    throw NumericalError("pdas: " + what + " at unknown " + std::to_string(unknowns ? (*unknowns)[minor] : minor) + ")");
-}
-
 void ExplicitReducedSystem::refactorize(const HeldSet& held) {
   const auto n_free = std::count(held.begin(), held.end(), 0);
   block_mode_ = factorizes_free_block(n_free);
   if (block_mode_) {
-    factorize_free_block(held);
+    block_.make(S_, held, chol_, counters_);
   } else {
     replace_held_by_identity(S_, held, S_tilde_);
-    factorize(chol_, S_tilde_, "the reduced matrix S_II is not positive definite (breakdown");
+    factorize_counted(chol_, S_tilde_, "the reduced matrix S_II is not positive definite (breakdown", counters_);
   }
   factor_held_ = held;
   updates_since_factorization_ = 0;
   cg_mode_ = false;
-  cg_since_sync_ = 0;
-}
-
-// S̃ on I⁺ = I ∪ M, M the held neighbours of the free unknowns I (in increasing order, so
-// that the columns stay sorted), factorized with an analysis of its own: reused while I⁺
-// is the same, new when it changed.  The margin M costs one ring of unknowns around I
-// (S̃'s rows there are the identity's) and lets the unknowns that switch within I⁺ be row
-// updates (update_free_block): measured on the resting membrane at n = 640, the PDAS
-// iterations after each new block flipped 2–16 vertices at the lift-off front, each flip
-// a new analysis and factorization of the block without the margin.
-void ExplicitReducedSystem::factorize_free_block(const HeldSet& held) {
-  std::vector<char> in_block(n_, 0);
-  for (int i = 0; i < n_; ++i)
-    if (!held[i])
-      for (SparseMatrix::InnerIterator it(S_, i); it; ++it) in_block[it.row()] = 1;  // (S symmetric: i's neighbours)
-  block_index_.assign(n_, -1);
-  block_.clear();
-  block_held_.clear();
-  for (int i = 0; i < n_; ++i)
-    if (in_block[i]) {
-      block_index_[i] = static_cast<int>(block_.size());
-      block_.push_back(i);
-      block_held_.push_back(held[i]);
-    }
-  const int m = static_cast<int>(block_.size());
-  std::vector<int> outer(m + 1, 0), inner;
-  std::vector<double> value;
-  for (int k = 0; k < m; ++k) {
-    for (SparseMatrix::InnerIterator it(S_, block_[k]); it; ++it)
-      if (block_index_[it.row()] >= 0) {
-        inner.push_back(block_index_[it.row()]);
-        value.push_back(it.value());
-      }
-    outer[k + 1] = static_cast<int>(inner.size());
-  }
-  S_block_ =
-      Eigen::Map<const SparseMatrix>(m, m, static_cast<int>(inner.size()), outer.data(), inner.data(), value.data());
-  S_block_.makeCompressed();
-  if (m == 0) return;  // every unknown held: X = b̃ (solve_free_block)
-  if (!block_chol_.analyzed_for(S_block_)) {
-    // The order of I⁺ induced by S's own (I⁺ in the order S eliminates it): a principal
-    // submatrix of a well-ordered S fills about as little, and the free set of a time
-    // loop changes every few steps, where a minimum degree search of its own cost as
-    // much as the numeric factorization (measured: docs/performance.md, resting contact).
-    std::vector<int> ordering;
-    ordering.reserve(m);
-    for (int i : chol_.ordering())
-      if (block_index_[i] >= 0) ordering.push_back(block_index_[i]);
-    block_chol_.analyze(S_block_, ordering);
-    ++counters_.analyses;
-  }
-  SparseMatrix S_tilde = S_block_;  // (replace_held_by_identity writes the values of S_block_'s pattern)
-  replace_held_by_identity(S_block_, block_held_, S_tilde);
-  factorize(block_chol_, S_tilde, "the reduced matrix S_II is not positive definite (breakdown", &block_);
-}
-
-// S̃ y = b with the block's factor: y = b outside I⁺, and on I⁺ the block's S̃ (whose
-// held rows give y_A = b_A).
-Eigen::VectorXd ExplicitReducedSystem::solve_free_block(const Eigen::VectorXd& b) const {
-  if (block_.empty()) return b;
-  Eigen::VectorXd b_block(block_.size());
-  for (std::size_t k = 0; k < block_.size(); ++k) b_block[k] = b[block_[k]];
-  const Eigen::VectorXd y_block = block_chol_.solve(b_block);
-  Eigen::VectorXd y = b;
-  for (std::size_t k = 0; k < block_.size(); ++k) y[block_[k]] = y_block[k];
-  return y;
-}
-
-// A row update on a block factor: the mean of those measured so far.
-double ExplicitReducedSystem::block_update_flops() const { return block_update_flops_ / block_updates_measured_; }
-
-// As for S̃'s factor (sync_factor): before any row update on a block is measured, up to
-// update_limit() of them are done, to measure them.
-bool ExplicitReducedSystem::block_updates_pay(const HeldSet& held) const {
-  if (block_.empty()) return false;
-  int changes = 0;
-  for (int i = 0; i < n_; ++i)
-    if (held[i] != factor_held_[i]) {
-      if (block_index_[i] < 0) return false;  // beyond the margin: a new block
-      ++changes;
-    }
-  if (block_updates_measured_ == 0) return changes <= update_limit();
-  return changes * block_update_flops() < 0.5 * block_chol_.factorization_flops();
-}
-
-// The block factor brought to `held` by row updates (block_updates_pay).
-void ExplicitReducedSystem::update_free_block(const std::vector<int>& to_delete, const std::vector<int>& to_add,
-                                              const HeldSet& held) {
-  ScopeTimer timer(counters_.row_update_s);
-  for (int i : to_delete) {
-    const int k = block_index_[i];
-    block_chol_.replace_by_identity(k);
-    block_update_flops_ += block_chol_.modification_flops();
-    block_held_[k] = 1;
-    factor_held_[i] = 1;
-  }
-  std::vector<char> keep(block_.size());
-  for (std::size_t k = 0; k < block_.size(); ++k) keep[k] = !block_held_[k];
-  for (int i : to_add) {
-    const int k = block_index_[i];
-    keep[k] = 1;
-    if (!block_chol_.restore(k, S_block_, keep)) return refactorize(held);  // round-off: start afresh
-    block_update_flops_ += block_chol_.modification_flops();
-    block_held_[k] = 0;
-    factor_held_[i] = 0;
-  }
-  const int changes = static_cast<int>(to_delete.size() + to_add.size());
-  block_updates_measured_ += changes;
-  counters_.row_updates += changes;
-  updates_since_factorization_ += changes;
   cg_since_sync_ = 0;
 }
 
@@ -228,25 +94,16 @@ void ExplicitReducedSystem::sync_factor(const HeldSet& held) {
   const int changes = static_cast<int>(to_delete.size() + to_add.size());
   if (changes == 0) return;
   if (block_mode_) {
-    if (!block_updates_pay(held)) return refactorize(held);  // a new block
-    return update_free_block(to_delete, to_add, held);
+    if (!block_.updates_pay(factor_held_, held, update_limit())) return refactorize(held);  // a new block
+    ScopeTimer timer(counters_.row_update_s);
+    if (!block_.update(to_delete, to_add)) return refactorize(held);  // round-off: start afresh
+    factor_held_ = held;
+  } else {
+    if (changes > update_limit() || refactorization_pays(changes)) return refactorize(held);
+    ScopeTimer timer(counters_.row_update_s);
+    if (!update_held(chol_, S_, factor_held_, to_delete, to_add, update_flops_)) return refactorize(held);
+    updates_measured_ += changes;
   }
-  if (changes > update_limit() || refactorization_pays(changes)) return refactorize(held);
-  ScopeTimer timer(counters_.row_update_s);
-  for (int i : to_delete) {
-    chol_.replace_by_identity(i);
-    update_flops_ += chol_.modification_flops();
-    factor_held_[i] = 1;
-  }
-  std::vector<char> keep(n_);
-  for (int i = 0; i < n_; ++i) keep[i] = !factor_held_[i];
-  for (int i : to_add) {
-    keep[i] = 1;
-    if (!chol_.restore(i, S_, keep)) return refactorize(held);  // round-off: start afresh
-    update_flops_ += chol_.modification_flops();
-    factor_held_[i] = 0;
-  }
-  updates_measured_ += changes;
   counters_.row_updates += changes;
   updates_since_factorization_ += changes;
   cg_since_sync_ = 0;
@@ -322,9 +179,10 @@ ExplicitReducedSystem::Sync ExplicitReducedSystem::sync_cost(const HeldSet& held
     n_free += !held[i];
   }
   if (block_mode_)  // (before any row update on a block is measured, priced as a new block)
-    return {block_updates_measured_ > 0 && block_updates_pay(held) ? changes * block_update_flops()
-                                                                   : block_chol_.factorization_flops(),
-            block_chol_.solve_flops()};
+    return {block_.updates_measured() && block_.updates_pay(factor_held_, held, update_limit())
+                ? changes * block_.update_flops()
+                : block_.factorization_flops(),
+            block_.solve_flops()};
   if (!priced_as_refactorization(changes)) return {changes * (update_flops_ / updates_measured_), chol_.solve_flops()};
   const double f = double(n_free) / n_;
   const bool block = factorizes_free_block(n_free);
@@ -435,7 +293,7 @@ Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, dou
     sync_factor(cg_held_);
   }
   ScopeTimer timer(counters_.solve_s);
-  y_last_ = block_mode_ ? solve_free_block(b) : chol_.solve(b);
+  y_last_ = block_mode_ ? block_.solve(b) : chol_.solve(b);
   return y_last_;
 }
 

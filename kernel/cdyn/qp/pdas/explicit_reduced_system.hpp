@@ -27,10 +27,8 @@
 //     in S's pattern still has the fill of the whole S, while the free block S_II alone
 //     is much smaller: a refactorization for a set that leaves at most
 //     QPOptions::pdas_free_block of the unknowns free factorizes S̃ on I⁺ = I ∪ M only,
-//     M the held neighbours of I (their rows the identity's; a new analysis when I⁺
-//     changed), so that unknowns switching within I⁺ — the degenerate vertices at a
-//     lift-off front that flip in the PDAS iterations after the block was made — are
-//     row updates on it, not a new analysis and factorization each.
+//     M the held neighbours of I, whose unknowns that switch within I⁺ are row updates
+//     on it (qp/pdas/free_block_factor.hpp).
 // A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
 // stops at the first non-positive pivot: NumericalError naming the unknown) and is the
 // unconstrained solve of a cold start.
@@ -44,6 +42,7 @@
 
 #include "cdyn/linalg/masked_cg.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
+#include "cdyn/qp/pdas/free_block_factor.hpp"
 #include "cdyn/qp/pdas/reduced_system.hpp"
 
 namespace cdyn {
@@ -75,20 +74,10 @@ class ExplicitReducedSystem : public ReducedSystem {
   }
 
  private:
-  void factorize(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
-                 const std::vector<int>* unknowns = nullptr);
   void refactorize(const HeldSet& held);
   // Whether a refactorization for a set leaving n_free unknowns free factorizes the free
   // block alone (QPOptions::pdas_free_block): what refactorize does and sync_cost prices.
   bool factorizes_free_block(long n_free) const { return n_free <= opt_.pdas_free_block * n_; }
-  void factorize_free_block(const HeldSet& held);
-  Eigen::VectorXd solve_free_block(const Eigen::VectorXd& b) const;
-  // Whether the block factor is brought to `held` by row updates: every changed unknown
-  // in I⁺, and their flops under half a refactorization's (refactorization_pays' rule);
-  // block_update_flops: their mean so far (requires one measured).
-  bool block_updates_pay(const HeldSet& held) const;
-  double block_update_flops() const;
-  void update_free_block(const std::vector<int>& to_delete, const std::vector<int>& to_add, const HeldSet& held);
   void sync_factor(const HeldSet& held);
   int update_limit() const;
   bool refactorization_pays(int changes) const;
@@ -111,14 +100,8 @@ class ExplicitReducedSystem : public ReducedSystem {
   SparseCholesky chol_;
   HeldSet factor_held_;                   // the held set the factor currently factorizes
   // Most unknowns held (QPOptions::pdas_free_block): the factor is that of S̃ on I⁺ alone.
-  bool block_mode_ = false;               // the factor is block_chol_'s, not chol_'s
-  std::vector<int> block_;                // I⁺ = I ∪ M (increasing)
-  std::vector<int> block_index_;          // an unknown's position in block_, −1 outside
-  HeldSet block_held_;                    // the held ones of block_ (M, and I's since held)
-  SparseMatrix S_block_;                  // S restricted to I⁺ (its rows as in S: restore())
-  SparseCholesky block_chol_;
-  double block_update_flops_ = 0.0;       // the row updates on block factors so far
-  int block_updates_measured_ = 0;
+  bool block_mode_ = false;               // the factor is block_'s, not chol_'s
+  FreeBlockFactor block_;
   int updates_since_factorization_ = 0;
   // CG on S̃ for a held set other than the factor's (QPOptions::pdas_cg_iterations)
   bool cg_mode_ = false;                  // solve_tilde uses CG with cg_held_

@@ -1,11 +1,13 @@
-// reduced_system.cpp — what the two reduced systems of an active-set step share: the
-// elimination of the held unknowns in a matrix's own pattern, the default reaction, and
-// the tolerance of an inexact solve.
+// reduced_system.cpp — what the reduced systems of an active-set step share: the
+// elimination of the held unknowns in a matrix's own pattern, the default reaction, the
+// tolerance of an inexact solve, and a factor's counted factorization and row updates.
 #include "cdyn/qp/pdas/reduced_system.hpp"
 
 #include <algorithm>
 
+#include "cdyn/base/error.hpp"
 #include "cdyn/linalg/parallel.hpp"
+#include "cdyn/linalg/sparse_cholesky.hpp"
 
 namespace cdyn {
 
@@ -52,6 +54,33 @@ void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, Sparse
 void copy_held_values(const HeldSet& held, const Eigen::VectorXd& value, Eigen::VectorXd& v) {
   for (std::size_t j = 0; j < held.size(); ++j)
     if (held[j]) v[j] = value[j];
+}
+
+void factorize_counted(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
+                       PDASCounters& counters, const std::vector<int>* unknowns) {
+  ScopeTimer timer(counters.factorization_s);
+  const int minor = factor.factorize(matrix);
+  ++counters.factorizations;
+  if (minor >= 0)
+    throw NumericalError("pdas: " + what + " at unknown " + std::to_string(unknowns ? (*unknowns)[minor] : minor) + ")");
+}
+
+bool update_held(SparseCholesky& factor, const SparseMatrix& S, HeldSet& held, const std::vector<int>& to_delete,
+                 const std::vector<int>& to_add, double& flops) {
+  for (int i : to_delete) {
+    factor.replace_by_identity(i);
+    flops += factor.modification_flops();
+    held[i] = 1;
+  }
+  std::vector<char> keep(held.size());
+  for (std::size_t i = 0; i < held.size(); ++i) keep[i] = !held[i];
+  for (int i : to_add) {
+    keep[i] = 1;
+    if (!factor.restore(i, S, keep)) return false;
+    flops += factor.modification_flops();
+    held[i] = 0;
+  }
+  return true;
 }
 
 }  // namespace cdyn

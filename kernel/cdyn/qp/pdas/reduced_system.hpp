@@ -19,12 +19,16 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
+#include <string>
 #include <vector>
 
 #include "cdyn/qp/bound_qp.hpp"
 #include "cdyn/qp/quadratic_form.hpp"
 
 namespace cdyn {
+
+class SparseCholesky;
 
 // The work a PDAS solver's linear algebra has done (PDASSolver::Counters).
 struct PDASCounters {
@@ -41,6 +45,17 @@ struct PDASCounters {
 
 // held[i] ≠ 0: unknown i is held at a bound (it is in the active set A).
 using HeldSet = std::vector<char>;
+
+// Adds the wall time of its scope to a counter (PDASCounters' *_s).
+class ScopeTimer {
+ public:
+  explicit ScopeTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
+  ~ScopeTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double& seconds_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 // How accurately an inexact (CG) solve of the reduced system is asked for: a bound on
 // the Jacobi-scaled residual max_{i∉A} |b̃ − S̃X|_i / S_ii, which on the free unknowns is
@@ -104,5 +119,19 @@ void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, Sparse
 // v_i = value_i on the held unknowns (the identity rows of S̃: b̃_A = X_A, and X_A exactly
 // after a solve), v unchanged elsewhere.
 void copy_held_values(const HeldSet& held, const Eigen::VectorXd& value, Eigen::VectorXd& v);
+
+// A numeric factorization of `matrix` by `factor` (timed and counted in `counters`);
+// NumericalError "pdas: <what> at unknown i)" if CHOLMOD finds it not positive definite,
+// i the QP's unknown (unknowns[row] when the matrix is a block of S).
+void factorize_counted(SparseCholesky& factor, const SparseMatrix& matrix, const std::string& what,
+                       PDASCounters& counters, const std::vector<int>* unknowns = nullptr);
+
+// Row updates of `factor`, the factor of S̃ for `held` (both in S's numbering): the
+// unknowns to_delete become held (rows and columns the identity's, cholmod_rowdel), those
+// to_add free (restored from S, cholmod_rowadd); `held` follows, their flops (CHOLMOD's
+// modfl) are added to `flops`.  False when a restore finds the matrix not positive
+// definite (round-off: a refactorization is due).
+bool update_held(SparseCholesky& factor, const SparseMatrix& S, HeldSet& held, const std::vector<int>& to_delete,
+                 const std::vector<int>& to_add, double& flops);
 
 }  // namespace cdyn
