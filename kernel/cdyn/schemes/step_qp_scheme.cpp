@@ -218,6 +218,11 @@ Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStat
     last_ = friction_last_.qp;
   }
   has_last_ = true;
+  return report_last(r, s, stats);
+}
+
+// The stats, s.reaction and X of last_, the step QP's result for r.
+Eigen::VectorXd StepQPScheme::report_last(const Eigen::VectorXd& r, State& s, StepStats& stats) const {
   stats.qp_iterations = last_.iterations;
   stats.qp_seconds = last_.seconds;
   stats.active = static_cast<int>(last_.active.size());
@@ -248,20 +253,14 @@ std::optional<Eigen::VectorXd> StepQPScheme::on_line(const Point& a, const Point
   std::vector<int> active = active_set(qp_, X, reaction, D_);
   const double residual = kkt_residual(qp_, X, reaction, &D_);
   if (active != b.active || !(residual <= tol)) return std::nullopt;
-  last_.X = X;  // the warm start of the next solve, as a solve's result would be
+  last_.X = std::move(X);  // the warm start of the next solve, as a solve's result would be
   last_.reaction = reaction;
   last_.active = std::move(active);
   last_.kkt_residual = residual;
   last_.converged = true;
   last_.iterations = 0;
   last_.seconds = 0.0;
-  stats.qp_iterations = 0;
-  stats.qp_seconds = 0.0;
-  stats.active = static_cast<int>(last_.active.size());
-  stats.kkt_residual = residual;
-  stats.converged = true;
-  s.reaction = condensation_ ? condensation_->expand_reaction(reaction) : reaction;
-  return condensation_ ? condensation_->expand(X, r) : X;
+  return report_last(r, s, stats);
 }
 
 }  // namespace cdyn

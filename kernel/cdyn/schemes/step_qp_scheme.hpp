@@ -117,6 +117,7 @@ class StepQPScheme : public TimeScheme {
   void end_condensation();  // the full QP from now on
   void map_friction();      // the friction nodes' unknowns in the step QP's numbering
   void solve_with_friction(State& s, StepStats& stats);  // fills friction_last_
+  Eigen::VectorXd report_last(const Eigen::VectorXd& r, State& s, StepStats& stats) const;
 
   double a_ = 0.0, m_ = 0.0;
   bool condense_;
