@@ -28,6 +28,11 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   j["solver_linear"] = sim.spec.solver.name != "pdas" || sim.spec.solver.backend != "native" ? "-"
                        : sim.spec.solver.options.pdas_cg_only                                 ? "cg"
                                                                                               : "factor";
+  // how the native pdas solved the full-step reconstruction's QP (eq. 14; on rank 0 with
+  // the petsc back end), "-" without one
+  j["reconstruction_linear"] = sim.scheme->full_steps() != FullSteps::Reconstructed      ? "-"
+                               : sim.spec.time.parameters.reconstruct_by_cg ? "cg"
+                                                                            : "factor";
   // the back end and its processes (docs/distributed.md): rank 0 and the ranks serving it
   j["backend"] = sim.spec.solver.backend;
   j["ranks"] = petsc::size();
@@ -57,6 +62,7 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   if (!p.friction.empty()) j["friction_work"] = totals.friction_work;  // W_f(T): in the drift with W_d
   j["max_violation"] = totals.max_violation;
   j["max_active"] = totals.max_active;
+  j["setup_s"] = sim.setup_seconds;  // this process's (a resumed run's own)
   j["wall_s"] = totals.wall_seconds;
   const int per = std::max(r.steps_done, 1);
   j["s_per_step"] = totals.wall_seconds / per;

@@ -2,6 +2,7 @@
 #include "simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "cdyn/base/error.hpp"
@@ -282,7 +283,8 @@ void check_backend(const Simulation& sim) {
 // refactorization dear (docs/performance.md, "Three dimensions": CG 2–9× faster in
 // contact from there) — if the step matrix is explicit and the scheme is not the
 // energy-exact one (its correction needs solves below the QP tolerance); the factor
-// otherwise (2D, small 3D problems, saddle forms).
+// otherwise (2D, small 3D problems, saddle forms).  The same rule picks how rank 0
+// solves the full-step reconstruction's QP on the petsc back end, whose step QP is CG's.
 namespace {
 bool cg_path_pays(const Simulation& sim) {
   const SceneSpec& s = sim.spec;
@@ -290,12 +292,13 @@ bool cg_path_pays(const Simulation& sim) {
   const int bubbles = p.W->element() == Element::P1Bubble && s.time.parameters.condense
                           ? p.W->mesh().n_cells() * p.W->components()
                           : 0;
-  return sim.mesh->dim == 3 && p.n_free() - bubbles >= 10000 && sparse_mass(*p.mass) && s.solver.backend == "native" &&
+  return sim.mesh->dim == 3 && p.n_free() - bubbles >= 10000 && sparse_mass(*p.mass) &&
          s.time.scheme != "discrete_gradient";
 }
 }  // namespace
 
 Simulation make_simulation(const SceneSpec& spec) {
+  const auto start = std::chrono::steady_clock::now();
   Simulation sim;
   sim.spec = spec;
   const SceneSpec& s = sim.spec;
@@ -318,15 +321,20 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.n_steps = s.time.n_steps;
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
-  if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_path_pays(sim);
-  // the full-step reconstruction's QP solved as the step's: by CG alone on that path
-  sim.spec.time.parameters.reconstruct_by_cg = s.solver.options.pdas_cg_only;
+  if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_path_pays(sim);  // (refused with petsc)
   // (the CG path's solves stop at the QP tolerance, above what the energy-exact
   // scheme's correction needs: auto takes the midpoint with its full-step
   // reconstruction then, docs/performance.md)
   sim.scheme_name = s.time.scheme != "auto" ? s.time.scheme
                     : s.solver.options.pdas_cg_only ? "midpoint"
                                                     : recommended_scheme(p);
+  // The full-step reconstruction's QP solved as the step's: by CG alone on that path.
+  // On the petsc back end rank 0 solves it with the native pdas, by the same rule
+  // (docs/distributed.md: there the factor of ZᵀAZ was rank 0's serial work), but not
+  // for the energy-exact scheme's corrections.
+  sim.spec.time.parameters.reconstruct_by_cg =
+      s.solver.options.pdas_cg_only ||
+      (s.solver.backend == "petsc" && sim.scheme_name != "discrete_gradient" && cg_path_pays(sim));
   sim.solver_name = s.solver.name;
   // (without a sparse M the step QP is in saddle form: no explicit S for CG alone)
   if (s.solver.options.pdas_cg_only && !sparse_mass(*p.mass))
@@ -347,6 +355,7 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.initial.reaction = Eigen::VectorXd::Zero(p.n_free());
   sim.scheme->initialize(sim.initial);  // e.g. U⁰'s massless part from eq. (14)
   add_probes(sim);
+  sim.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sim;
 }
 

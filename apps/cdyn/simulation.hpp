@@ -34,6 +34,9 @@ struct Simulation {
   // under CHOLMOD (the environment's; 0: a BLAS that cannot tell; linalg/threads.hpp).
   int threads = 1, blas_threads = 0;
   int contact_every = 1;  // period of contact.csv's rows (elasticity)
+  // The wall time make_simulation took: the mesh, the assembly, the mass model, the step
+  // matrix and the scheme's set-up (its factorizations wait for the first step).
+  double setup_seconds = 0;
   std::unique_ptr<Mesh> mesh;
   ConstrainedProblem problem;
   State initial;

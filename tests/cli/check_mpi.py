@@ -9,7 +9,9 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     PETSc back end on one process and on two gives the native run's history —
     energies, friction work, active counts, probes — to 1e-9 of each column's largest
     value; summary.json says `backend` and `ranks`.
- 2. TAO's TRON and SNESVI on two processes: the same.
+ 2. TAO's TRON and SNESVI on two processes: the same.  The full-step reconstruction,
+    on rank 0, by CG alone where solver.linear = "auto" takes it (the cube at n = 16,
+    with the native CG path's history), by the factor on the membrane.
  3. Errors: one line from rank 0 and exit status 2 — the native back end under mpirun
     -n 2, a saddle-form pair with TAO or with solver.pc, friction with snesvi, solver.pc
     on the native back end, solver.linear on the petsc one; a step QP that does not
@@ -100,6 +102,22 @@ for name in ("tao_tron", "snesvi"):
                                                  "solver.name=" + name])
     d, key = largest_difference(native, rows)
     check(d <= 1e-9, f"membrane: petsc {name} on 2 ranks = native (largest difference {d:.1e} in {key})")
+
+# The full-step reconstruction stays on rank 0, solved by the native pdas as the native
+# back end's solver.linear = "auto" would: CG alone on the cube at n = 16 (14 739 step-QP
+# unknowns, in contact from step 11), the factor on the membrane; the history as the native
+# CG path's.
+cube = [os.path.join(src, "data/scenes/cube_3d.toml"), "mesh.n=16", "time.dt=0.03125", "time.T=0.375",
+        "obstacle.point=[0, 0, -0.03125]", "output.probes={}", "output.wellposed=false", "solver.tol=1e-12"]
+_, native = run("cube-native-cg", 0, cube[0], cube[1:] + ["solver.linear=cg"])
+summary, rows = run("cube-petsc1", 1, cube[0], cube[1:] + ["solver.backend=petsc"])
+d, key = largest_difference(native, rows)
+check(summary["reconstruction_linear"] == "cg" and max(int(r["active"]) for r in native) > 0 and d <= 1e-9,
+      f"cube n = 16 on petsc: reconstruction {summary['reconstruction_linear']} (expected cg), the native CG "
+      f"path's history to {d:.1e} in {key}")
+summary, _ = run("membrane-petsc1", 1, "", ["time.T=0.01", "solver.backend=petsc"])
+check(summary["reconstruction_linear"] == "factor",
+      f"membrane on petsc: reconstruction {summary['reconstruction_linear']} (expected factor)")
 
 ERRORS = {
     "the native back end under mpirun -n 2": ("", [], "solver.backend"),

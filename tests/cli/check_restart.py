@@ -38,7 +38,7 @@ from cli_helpers import check, failures  # noqa: E402
 cdyn, src, work = sys.argv[1:4]
 scene = os.path.join(src, "data/scenes/damped_disk.toml")
 SETS = ["time.T=0.3", "output.checkpoint_every=50", "output.plots=false", "output.stress=false"]
-TIMING = {"wall_s", "s_per_step", "qp_s_per_step", "fields_s", "written", "resumed_at"}
+TIMING = {"setup_s", "wall_s", "s_per_step", "qp_s_per_step", "fields_s", "written", "resumed_at"}
 
 
 def command(out):

@@ -87,7 +87,7 @@ assert close(s["E0"], E[0], 1e-15) and close(s["E_final"], E[-1], 1e-15)
 drift = max(abs(e - E[0]) / abs(E[0]) for e in E)
 assert close(s["E_rel_drift"], drift, 1e-9), (s["E_rel_drift"], drift)
 for key in ["scene", "pair", "scheme", "solver", "n_dofs", "n_steps", "dt", "h", "E0", "E_final", "E_rel_drift",
-            "max_violation", "wall_s", "s_per_step", "qp_iters_mean", "wellposed"]:
+            "max_violation", "setup_s", "wall_s", "s_per_step", "qp_iters_mean", "wellposed"]:
     assert key in s, key
 assert s["wellposed"]["satisfied"] is True and s["wellposed"]["beta"] > 0
 assert {"u@centre", "v@centre", "lambda@centre"} <= set(rows[0])
