@@ -25,7 +25,7 @@ namespace {
 // more than 32 MB (a sparse matrix of a large mesh, its transpose, a product, the
 // triplets of an assembly) by a fresh mmap, whose every page then faults on its first
 // write, and unmaps it on free.  Measured on the 32³ cube (697 635 unknowns, P1+/P0):
-// set-up 19.7 → 8.3 s, the first step 3.4 → 1.0 s, peak memory 1.54 → 1.58 GB
+// set-up 19.7 → 7.7 s, the first step 3.4 → 1.1 s, peak memory 1.54 → 1.58 GB
 // (docs/performance.md, "Set-up").  The process's memory stays at its peak until it
 // exits, which a run reaches anyway; the Python module leaves its interpreter's
 // allocator alone.
