@@ -13,7 +13,6 @@
 #include "cdyn/mesh/cell_geometry.hpp"
 #include "cdyn/base/error.hpp"
 #include "cdyn/fe/quadrature.hpp"
-#include "cdyn/linalg/parallel.hpp"
 
 namespace cdyn {
 
@@ -207,13 +206,15 @@ SparseMatrix assemble_elasticity(const FESpace& W, const CellCoefficient& lambda
   // one thread), then their entries into the triplets in cell order: the same triplets,
   // bit for bit, whatever the thread count (linalg/parallel.hpp, rule 1).  The cells'
   // quadrature is most of the assembly (3D P1+: 24 points, 225 entries a cell).
+  // (a parallel region costs microseconds: a chunk of fewer than kParallelCells cells stays
+  // on one thread)
   const int n_cells = W.mesh().n_cells();
-  constexpr int kChunk = 4096;
+  constexpr int kChunk = 4096, kParallelCells = 256;
   std::vector<double> locals(static_cast<std::size_t>(std::min(n_cells, kChunk)) * m * m);
   TripletSum t(W.n_dofs(), W.n_dofs(), static_cast<std::size_t>(n_cells) * m * m);
   for (int c0 = 0; c0 < n_cells; c0 += kChunk) {
     const int c1 = std::min(n_cells, c0 + kChunk);
-#pragma omp parallel for schedule(static) if (long(c1 - c0) * m * m * q.size() >= kParallelWork)
+#pragma omp parallel for schedule(static) if (c1 - c0 >= kParallelCells)
     for (int c = c0; c < c1; ++c) cell_matrix(c, &locals[static_cast<std::size_t>(c - c0) * m * m]);
     for (int c = c0; c < c1; ++c) {
       const double* local = &locals[static_cast<std::size_t>(c - c0) * m * m];
