@@ -228,10 +228,9 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   if (opt_.pdas_cg_always) return true;
   const double iterations = counters_.cg_solves > 0 ? double(counters_.cg_iterations) / counters_.cg_solves : 50.0;
   const double cg_flops = iterations * cg_iteration_flops();
-  // With a block factor the alternative is its row updates or a new block (of about the
-  // same size).
-  if (block_mode_) return sync_cost(held).flops > cg_flops;
-  if (counters_.cg_solves == 0) return true;  // CG's own cost measured first
+  // CG's own cost is measured first, but with a block factor, whose alternative is its row
+  // updates or a new block (of about the same size), priced as it stands.
+  if (!block_mode_ && counters_.cg_solves == 0) return true;
   return sync_cost(held).flops > cg_flops;
 }
 
