@@ -1,11 +1,15 @@
 // test_condensation.cpp — static condensation of the bubbles (qp/condensation.hpp): it picks
 // the bubbles of P1+/P0 and nothing else, makes no fill, and is an identity — the
 // condensed QP and the full QP have the same solution and reaction, and a time loop
-// with and without it gives the same states to round-off.
+// with and without it gives the same states to round-off; in elasticity it takes each
+// cell's bubble as one block of unknowns (one a component), which no single-unknown rule
+// could take.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <iostream>
 
+#include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/qp/condensation.hpp"
 #include "cdyn/schemes/step_qp_scheme.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
@@ -25,7 +29,7 @@ SparseMatrix midpoint_S(const ConstrainedProblem& p, double dt = 1e-3) {
 }
 
 // The nonzeros of S restricted to the kept unknowns.
-long kept_block_nonzeros(const SparseMatrix& S, const DiagonalCondensation& c) {
+long kept_block_nonzeros(const SparseMatrix& S, const StaticCondensation& c) {
   long nnz = 0;
   for (int j = 0; j < S.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(S, j); it; ++it) nnz += !c.condenses(j) && !c.condenses(it.row());
@@ -36,7 +40,7 @@ TEST(Condensation, PicksExactlyTheBubblesOfP1PlusP0WithoutFill) {
   const Mesh mesh = unit_square_mesh(8);
   const ConstrainedProblem p = membrane(mesh, {Element::P1Bubble, "P0"}, true);
   const SparseMatrix S = midpoint_S(p);
-  const DiagonalCondensation c(S, p.lower, p.upper);
+  const StaticCondensation c(S, p.lower, p.upper);
   // One bubble per triangle, 2n² of them; the free vertices (n−1)² are all kept.
   EXPECT_EQ(c.n_condensed(), mesh.n_cells());
   EXPECT_EQ(c.n_kept(), 7 * 7);
@@ -50,14 +54,14 @@ TEST(Condensation, PicksExactlyTheBubblesOfP1PlusP0WithoutFill) {
   // The same without the obstacle: the vertices are unbounded then, but an interior
   // vertex's neighbours are not a clique, so the choice is the same.
   const ConstrainedProblem free = membrane(mesh, {Element::P1Bubble, "P0"}, false);
-  EXPECT_EQ(DiagonalCondensation(midpoint_S(free), free.lower, free.upper).n_condensed(), mesh.n_cells());
+  EXPECT_EQ(StaticCondensation(midpoint_S(free), free.lower, free.upper).n_condensed(), mesh.n_cells());
 
   // P1 with the consistent mass, unconstrained: only the two corner vertices (n−1, 1)
   // and (1, n−1), whose two free neighbours are joined by a diagonal of the mesh
   // (square(n) splits along the lower-left to upper-right diagonal); every other
   // free vertex has a ring of neighbours, not a clique.
   const ConstrainedProblem p1 = membrane(mesh, {Element::P1, "consistent"}, false);
-  EXPECT_EQ(DiagonalCondensation(midpoint_S(p1), p1.lower, p1.upper).n_condensed(), 2);
+  EXPECT_EQ(StaticCondensation(midpoint_S(p1), p1.lower, p1.upper).n_condensed(), 2);
 }
 
 // S_c against the Schur complement computed densely, and the QP identity: the PDAS
@@ -66,7 +70,7 @@ TEST(Condensation, CondensedQPHasTheSameSolutionAndReaction) {
   const Mesh mesh = unit_square_mesh(6);
   const ConstrainedProblem p = membrane(mesh, {Element::P1Bubble, "P0"}, true);
   const SparseMatrix S = midpoint_S(p);
-  const DiagonalCondensation c(S, p.lower, p.upper);
+  const StaticCondensation c(S, p.lower, p.upper);
   const int n = p.n_free();
 
   // dense Schur complement S_vv − S_vb S_bb⁻¹ S_bv
@@ -192,3 +196,85 @@ TEST(Condensation, ConjugateGradientsOnTheCondensedStepGiveTheSameStates) {
 }
 
 }  // namespace
+
+namespace {
+
+// A body of the unit square or cube resting at 0.01 above the plane y = 0 (z = 0 in
+// space), pushed towards it: P1+/P0 elasticity, ν = 0.3, the plane inclined a little so
+// that the contact nodes carry rotated unknowns.
+ConstrainedProblem elastic_body(const Mesh& mesh) {
+  ElasticContactData d;
+  d.mass = MassSpec::pair(Element::P1Bubble, Element::P0);
+  const Lame lame = lame_parameters(1.0, 0.3);
+  d.lambda = lame.lambda;
+  d.mu = lame.mu;
+  d.contact_parts = {mesh.dim == 2 ? 0 : 4};  // "bottom"
+  d.obstacle_point = {0.0, mesh.dim == 2 ? -0.01 : 0.0, mesh.dim == 3 ? -0.01 : 0.0};
+  d.obstacle_normal = mesh.dim == 2 ? Point{0.1, 1.0, 0.0} : Point{0.1, 0.0, 1.0};
+  return build_elastic_contact(mesh, d);
+}
+
+}  // namespace
+
+// Elasticity: each cell's bubble unknowns (one a component) are coupled with each other
+// by A, and each with one component of the cell's vertices, so that no single one has a
+// clique of neighbours and the rule for single unknowns takes none; named as one block
+// each (bubble_unknowns), every bubble is condensed, without fill, and S_c is the dense
+// Schur complement.
+TEST(Condensation, TakesEachCellsBubbleAsOneBlockInElasticity) {
+  for (const Mesh& mesh : {unit_square_mesh(5), unit_cube_mesh(2)}) {
+    const ConstrainedProblem p = elastic_body(mesh);
+    const SparseMatrix S = midpoint_S(p);
+    EXPECT_EQ(StaticCondensation(S, p.lower, p.upper).n_condensed(), 0) << "dim " << mesh.dim;
+    const StaticCondensation c(S, p.lower, p.upper, bubble_unknowns(p));
+    ASSERT_EQ(c.n_condensed(), mesh.dim * mesh.n_cells());
+    EXPECT_EQ(c.n_kept(), p.n_free() - c.n_condensed());
+    EXPECT_EQ(c.S_c().nonZeros(), kept_block_nonzeros(S, c));  // no fill
+
+    std::vector<int> v, b;
+    for (int i = 0; i < p.n_free(); ++i) (c.condenses(i) ? b : v).push_back(i);
+    const Eigen::MatrixXd D(S);
+    const Eigen::MatrixXd Svv = D(v, v), Svb = D(v, b), Sbb = D(b, b);
+    const Eigen::MatrixXd schur = Svv - Svb * Sbb.ldlt().solve(Svb.transpose());
+    // (the elimination cancels entries of size max |S| down to those of S_c: round-off
+    // relative to S)
+    EXPECT_LE((Eigen::MatrixXd(c.S_c()) - schur).cwiseAbs().maxCoeff(), 1e-14 * D.cwiseAbs().maxCoeff());
+    std::cout << "dim " << mesh.dim << ": |S_c - Schur| = " << (Eigen::MatrixXd(c.S_c()) - schur).cwiseAbs().maxCoeff() << ", max |S| = " << D.cwiseAbs().maxCoeff() << "\n";
+  }
+}
+
+// A time loop of the elastic body onto the inclined plane, with and without the block
+// condensation (midpoint and backward Euler, direct solves): the same states to
+// round-off, as for the membrane above (measured: see the output).
+TEST(Condensation, ElasticTimeLoopsAgreeWithAndWithoutTheBlocks) {
+  const Mesh mesh = unit_square_mesh(6);
+  const ConstrainedProblem p = elastic_body(mesh);
+  for (const std::string scheme : {"midpoint", "backward_euler"}) {
+    QPOptions direct = cdyn::testing::tight();
+    direct.pdas_cg_iterations = 0;
+    PDASSolver s1(direct), s2(direct);
+    SchemeParameters with, without;
+    without.condense = false;
+    const double dt = 0.02;
+    auto t1 = make_time_scheme(scheme, p, s1, dt, with);
+    auto t2 = make_time_scheme(scheme, p, s2, dt, without);
+    State a;
+    a.U = Eigen::VectorXd::Zero(p.n_free());
+    a.V = p.mass->velocity(Eigen::VectorXd::Constant(p.n_free(), -0.1));  // towards the plane
+    State b = a;
+    double du = 0, dv = 0;
+    int max_active = 0;
+    for (int k = 0; k < 50; ++k) {  // contact after ≈ 0.1 / 0.1 / dt = 5 steps
+      const StepStats st = t1->step(a);
+      t2->step(b);
+      max_active = std::max(max_active, st.active);
+      du = std::max(du, (a.U - b.U).lpNorm<Eigen::Infinity>() / b.U.lpNorm<Eigen::Infinity>());
+      dv = std::max(dv, (a.V - b.V).lpNorm<Eigen::Infinity>() / std::max(b.V.lpNorm<Eigen::Infinity>(), 1e-3));
+    }
+    std::cout << scheme << ": max |dU|/|U| = " << du << ", |dV|/|V| = " << dv << ", active up to " << max_active
+              << "\n";
+    EXPECT_GT(max_active, 0) << scheme;
+    EXPECT_LE(du, 1e-10) << scheme;
+    EXPECT_LE(dv, 1e-10) << scheme;
+  }
+}

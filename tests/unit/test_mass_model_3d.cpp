@@ -92,7 +92,7 @@ TEST(MassModel3D, TheBubblesOfP1PlusP0AreCondensed) {
   VectorXd lower = VectorXd::Constant(n, -inf), upper = VectorXd::Constant(n, inf);
   for (int v = 0; v < mesh.n_vertices(); ++v)
     if (const int f = bc.free_index(W.vertex_dof(v)); f >= 0) lower[f] = 0.0;  // the obstacle u ≥ 0
-  const DiagonalCondensation cond(S, lower, upper);
+  const StaticCondensation cond(S, lower, upper);
   EXPECT_EQ(cond.n_condensed(), mesh.n_cells());
   for (int c = 0; c < mesh.n_cells(); ++c) EXPECT_TRUE(cond.condenses(bc.free_index(W.cell_dofs(c)[4])));
   const VectorXd r = VectorXd::LinSpaced(n, -1.0, 2.0).array().cos();

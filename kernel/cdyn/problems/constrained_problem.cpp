@@ -70,4 +70,20 @@ double ConstrainedProblem::max_violation(const Eigen::VectorXd& Uf, double t) co
   return v;
 }
 
+std::vector<std::vector<int>> bubble_unknowns(const ConstrainedProblem& p) {
+  const FESpace& W = *p.W;
+  std::vector<std::vector<int>> blocks;
+  if (W.element() != Element::P1Bubble) return blocks;
+  const int bubble = W.dim() + 1;  // the cell's local dof after its vertices
+  for (int c = 0; c < W.mesh().n_cells(); ++c) {
+    std::vector<int> block;
+    for (int k = 0; k < W.components(); ++k) {
+      const int i = p.bc->free_index(W.dof(W.cell_dofs(c)[bubble], k));
+      if (i >= 0) block.push_back(i);
+    }
+    if (!block.empty()) blocks.push_back(std::move(block));
+  }
+  return blocks;
+}
+
 }  // namespace cdyn

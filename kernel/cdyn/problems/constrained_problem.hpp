@@ -119,4 +119,9 @@ struct ConstrainedProblem {
   mutable Eigen::VectorXd lift_force_;  // (A U_D)_f, made by the first load() (A_full, U_D fixed by then)
 };
 
+// The unknowns of each cell's bubble when W^h = P1+, one per component (free ones only):
+// the blocks the step's static condensation may eliminate together (qp/condensation.hpp;
+// in elasticity no single one of them can be).  Empty for the other spaces.
+std::vector<std::vector<int>> bubble_unknowns(const ConstrainedProblem& p);
+
 }  // namespace cdyn

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
+
+#include <Eigen/Cholesky>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/linalg/parallel.hpp"
@@ -24,75 +27,150 @@ bool stored(const SparseMatrix& S, int i, int j) {
 // such an unknown is not a bubble, and eliminating it would not pay.
 constexpr int kMaxDegree = 32;
 
+// S_GG: the dense block of S on the unknowns G.
+Eigen::MatrixXd block_of(const SparseMatrix& S, const std::vector<int>& G) {
+  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(G.size()), static_cast<Eigen::Index>(G.size()));
+  for (std::size_t q = 0; q < G.size(); ++q)
+    for (SparseMatrix::InnerIterator it(S, G[q]); it; ++it) {
+      const auto p = std::find(G.begin(), G.end(), static_cast<int>(it.row()));
+      if (p != G.end()) block(p - G.begin(), static_cast<Eigen::Index>(q)) = it.value();
+    }
+  return block;
+}
+
 }  // namespace
 
-DiagonalCondensation::DiagonalCondensation(const SparseMatrix& S, const Eigen::VectorXd& lower,
-                                           const Eigen::VectorXd& upper)
+StaticCondensation::StaticCondensation(const SparseMatrix& S, const Eigen::VectorXd& lower,
+                                       const Eigen::VectorXd& upper, const std::vector<std::vector<int>>& blocks)
     : S_(S) {
   S_.makeCompressed();
   const int n = static_cast<int>(S_.rows());
   if (S_.cols() != n || lower.size() != n || upper.size() != n)
     throw InputError("condensation: S and the bounds have different sizes");
 
-  // Candidates: unbounded, positive diagonal, small degree; fewest neighbours first.
   std::vector<int> degree(n, 0);
   std::vector<double> diagonal(n, 0.0);
-  std::vector<int> candidates;
-  for (int j = 0; j < n; ++j) {
+  for (int j = 0; j < n; ++j)
     for (SparseMatrix::InnerIterator it(S_, j); it; ++it) {
       if (it.row() == j)
         diagonal[j] = it.value();
       else
         ++degree[j];
     }
-    if (lower[j] == -INFINITY && upper[j] == INFINITY && diagonal[j] > 0 && degree[j] <= kMaxDegree)
-      candidates.push_back(j);
-  }
-  std::stable_sort(candidates.begin(), candidates.end(), [&](int a, int b) { return degree[a] < degree[b]; });
+  auto candidate = [&](int j) {
+    return lower[j] == -INFINITY && upper[j] == INFINITY && diagonal[j] > 0 && degree[j] <= kMaxDegree;
+  };
 
-  std::vector<char> condensed(n, 0);
+  // Condenses the unknowns of G together when the rules of the header allow it.
+  std::vector<char> condensed(n, 0), in_block(n, 0), seen(n, 0);
+  std::vector<std::vector<int>> chosen;
   std::vector<int> neighbours;
-  for (int b : candidates) {
+  auto try_condense = [&](std::vector<int> G) {
+    for (int b : G)
+      if (!candidate(b) || condensed[b]) return;
+    for (int b : G) in_block[b] = 1;
     neighbours.clear();
     bool ok = true;
-    for (SparseMatrix::InnerIterator it(S_, b); it && ok; ++it) {
-      const int i = static_cast<int>(it.row());
-      if (i == b) continue;
-      ok = !condensed[i];  // S_bb stays diagonal
-      neighbours.push_back(i);
-    }
+    for (std::size_t m = 0; ok && m < G.size(); ++m)
+      for (SparseMatrix::InnerIterator it(S_, G[m]); it && ok; ++it) {
+        const int i = static_cast<int>(it.row());
+        if (in_block[i] || seen[i]) continue;
+        ok = !condensed[i];  // S_bb stays block diagonal
+        seen[i] = 1;
+        neighbours.push_back(i);
+      }
+    for (int i : neighbours) seen[i] = 0;
+    for (int b : G) in_block[b] = 0;
+    // no fill: the kept neighbours are already coupled
     for (std::size_t p = 0; ok && p < neighbours.size(); ++p)
       for (std::size_t q = p + 1; ok && q < neighbours.size(); ++q) ok = stored(S_, neighbours[p], neighbours[q]);
-    if (ok) condensed[b] = 1;  // no fill: the kept neighbours are already coupled
-  }
+    if (ok && G.size() > 1) ok = block_of(S_, G).llt().info() == Eigen::Success;  // S_bb > 0
+    if (!ok) return;
+    std::sort(G.begin(), G.end());
+    for (int b : G) condensed[b] = 1;
+    chosen.push_back(std::move(G));
+  };
 
-  kept_of_.assign(n, -1);
-  for (int i = 0; i < n; ++i) {
-    if (condensed[i]) {
-      condensed_.push_back(i);
+  std::vector<char> named(n, 0);
+  for (const std::vector<int>& G : blocks) {
+    if (G.empty() || static_cast<int>(G.size()) > kMaxBlock)
+      throw InputError("condensation: a block has " + std::to_string(G.size()) + " unknowns (1 to " +
+                       std::to_string(kMaxBlock) + ")");
+    for (int b : G) {
+      if (b < 0 || b >= n) throw InputError("condensation: a block names unknown " + std::to_string(b));
+      if (named[b]) throw InputError("condensation: unknown " + std::to_string(b) + " is in two blocks");
+      named[b] = 1;
+    }
+    try_condense(G);
+  }
+  // then single unknowns, fewest neighbours first
+  std::vector<int> singles;
+  for (int j = 0; j < n; ++j)
+    if (candidate(j) && !condensed[j]) singles.push_back(j);
+  std::stable_sort(singles.begin(), singles.end(), [&](int a, int b) { return degree[a] < degree[b]; });
+  for (int b : singles) try_condense({b});
+
+  // the blocks in the order of their first unknowns (single unknowns: increasing index)
+  std::sort(chosen.begin(), chosen.end(), [](const auto& a, const auto& b) { return a[0] < b[0]; });
+  for (const std::vector<int>& G : chosen) {
+    first_.push_back(n_condensed());
+    condensed_.insert(condensed_.end(), G.begin(), G.end());
+    inverse_at_.push_back(static_cast<int>(inverse_.size()));
+    if (G.size() == 1) {
+      inverse_.push_back(diagonal[G[0]]);
     } else {
+      const Eigen::MatrixXd inverse = block_of(S_, G).llt().solve(Eigen::MatrixXd::Identity(G.size(), G.size()));
+      inverse_.insert(inverse_.end(), inverse.data(), inverse.data() + inverse.size());
+    }
+  }
+  first_.push_back(n_condensed());
+  kept_of_.assign(n, -1);
+  for (int i = 0; i < n; ++i)
+    if (!condensed[i]) {
       kept_of_[i] = static_cast<int>(kept_.size());
       kept_.push_back(i);
     }
-  }
-  S_bb_.resize(n_condensed());
-  for (int k = 0; k < n_condensed(); ++k) S_bb_[k] = diagonal[condensed_[k]];
 
-  // S_c: the kept block, then −S_ib S_jb / S_bb for each condensed b and kept i, j.
+  // S_c: the kept block, then −S_vg S_gg⁻¹ S_gv for each condensed block g.
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(S_.nonZeros());
   for (int j : kept_)
     for (SparseMatrix::InnerIterator it(S_, j); it; ++it)
       if (kept_of_[it.row()] >= 0) t.emplace_back(kept_of_[it.row()], kept_of_[j], it.value());
-  for (int k = 0; k < n_condensed(); ++k) {
-    const int b = condensed_[k];
-    for (SparseMatrix::InnerIterator it(S_, b); it; ++it) {
-      if (it.row() == b) continue;
-      for (SparseMatrix::InnerIterator jt(S_, b); jt; ++jt) {
-        if (jt.row() == b) continue;
-        t.emplace_back(kept_of_[it.row()], kept_of_[jt.row()], -it.value() * jt.value() / S_bb_[k]);
+  for (int g = 0; g + 1 < static_cast<int>(first_.size()); ++g) {
+    const int m = first_[g + 1] - first_[g];
+    const int* members = condensed_.data() + first_[g];
+    if (m == 1) {
+      const int b = members[0];
+      const double S_bb = inverse_[inverse_at_[g]];
+      for (SparseMatrix::InnerIterator it(S_, b); it; ++it) {
+        if (it.row() == b) continue;
+        for (SparseMatrix::InnerIterator jt(S_, b); jt; ++jt) {
+          if (jt.row() == b) continue;
+          t.emplace_back(kept_of_[it.row()], kept_of_[jt.row()], -it.value() * jt.value() / S_bb);
+        }
       }
+      continue;
     }
+    // S_vg: the block's kept neighbours (rows) by its unknowns (columns)
+    neighbours.clear();
+    for (int p = 0; p < m; ++p)
+      for (SparseMatrix::InnerIterator it(S_, members[p]); it; ++it)
+        if (kept_of_[it.row()] >= 0) neighbours.push_back(static_cast<int>(it.row()));
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    Eigen::MatrixXd S_vg = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(neighbours.size()), m);
+    for (int p = 0; p < m; ++p)
+      for (SparseMatrix::InnerIterator it(S_, members[p]); it; ++it)
+        if (kept_of_[it.row()] >= 0) {
+          const auto i = std::lower_bound(neighbours.begin(), neighbours.end(), static_cast<int>(it.row()));
+          S_vg(i - neighbours.begin(), p) = it.value();
+        }
+    const Eigen::Map<const Eigen::MatrixXd> inverse(inverse_.data() + inverse_at_[g], m, m);
+    const Eigen::MatrixXd update = S_vg * inverse * S_vg.transpose();
+    for (std::size_t q = 0; q < neighbours.size(); ++q)
+      for (std::size_t p = 0; p < neighbours.size(); ++p)
+        t.emplace_back(kept_of_[neighbours[p]], kept_of_[neighbours[q]], -update(p, q));
   }
   S_c_.resize(n_kept(), n_kept());
   S_c_.setFromTriplets(t.begin(), t.end());
@@ -104,24 +182,41 @@ DiagonalCondensation::DiagonalCondensation(const SparseMatrix& S, const Eigen::V
   std::vector<Eigen::Triplet<double>> bv;
   for (int k = 0; k < n_condensed(); ++k)
     for (SparseMatrix::InnerIterator it(S_, condensed_[k]); it; ++it)
-      if (it.row() != condensed_[k]) bv.emplace_back(k, kept_of_[it.row()], it.value());
+      if (kept_of_[it.row()] >= 0) bv.emplace_back(k, kept_of_[it.row()], it.value());
   S_bv_.resize(n_condensed(), n_kept());
   S_bv_.setFromTriplets(bv.begin(), bv.end());
   S_bv_.makeCompressed();
 }
 
-Eigen::VectorXd DiagonalCondensation::kept(const Eigen::VectorXd& x) const {
+void StaticCondensation::solve_block(int g, double* y) const {
+  const int m = first_[g + 1] - first_[g];
+  const double* inverse = inverse_.data() + inverse_at_[g];
+  if (m == 1) {
+    y[0] /= inverse[0];  // S_bb
+    return;
+  }
+  double z[kMaxBlock];
+  for (int p = 0; p < m; ++p) z[p] = y[p];
+  for (int p = 0; p < m; ++p) {
+    double s = 0.0;
+    for (int q = 0; q < m; ++q) s += inverse[p + m * q] * z[q];
+    y[p] = s;
+  }
+}
+
+Eigen::VectorXd StaticCondensation::kept(const Eigen::VectorXd& x) const {
   Eigen::VectorXd out(n_kept());
 #pragma omp parallel for schedule(static) if (n_kept() >= kParallelWork)
   for (int k = 0; k < n_kept(); ++k) out[k] = x[kept_[k]];
   return out;
 }
 
-// r_c,j = r_j − Σ_b S_jb y_b with y_b = r_b / S_bb, the terms subtracted one by one in
+// r_c,j = r_j − Σ_b S_jb y_b with y = S_bb⁻¹ r_b, the terms subtracted one by one in
 // the order of b.
-Eigen::VectorXd DiagonalCondensation::reduce(const Eigen::VectorXd& r) const {
+Eigen::VectorXd StaticCondensation::reduce(const Eigen::VectorXd& r) const {
   Eigen::VectorXd y(n_condensed());
-  for (int k = 0; k < n_condensed(); ++k) y[k] = r[condensed_[k]] / S_bb_[k];
+  for (int k = 0; k < n_condensed(); ++k) y[k] = r[condensed_[k]];
+  for (int g = 0; g + 1 < static_cast<int>(first_.size()); ++g) solve_block(g, y.data() + first_[g]);
   const int* outer = S_bv_.outerIndexPtr();
   const int* inner = S_bv_.innerIndexPtr();
   const double* v = S_bv_.valuePtr();
@@ -135,21 +230,27 @@ Eigen::VectorXd DiagonalCondensation::reduce(const Eigen::VectorXd& r) const {
   return rc;
 }
 
-Eigen::VectorXd DiagonalCondensation::expand(const Eigen::VectorXd& X_v, const Eigen::VectorXd& r) const {
+Eigen::VectorXd StaticCondensation::expand(const Eigen::VectorXd& X_v, const Eigen::VectorXd& r) const {
   Eigen::VectorXd X(n());
   for (int k = 0; k < n_kept(); ++k) X[kept_[k]] = X_v[k];
+  const int n_blocks = static_cast<int>(first_.size()) - 1;
 #pragma omp parallel for schedule(static) if (S_bv_.nonZeros() >= kParallelWork)
-  for (int k = 0; k < n_condensed(); ++k) {
-    const int b = condensed_[k];
-    double rb = r[b];
-    for (SparseMatrix::InnerIterator it(S_, b); it; ++it)
-      if (it.row() != b) rb -= it.value() * X_v[kept_of_[it.row()]];
-    X[b] = rb / S_bb_[k];
+  for (int g = 0; g < n_blocks; ++g) {
+    double y[kMaxBlock];
+    for (int k = first_[g]; k < first_[g + 1]; ++k) {
+      const int b = condensed_[k];
+      double rb = r[b];
+      for (SparseMatrix::InnerIterator it(S_, b); it; ++it)
+        if (kept_of_[it.row()] >= 0) rb -= it.value() * X_v[kept_of_[it.row()]];
+      y[k - first_[g]] = rb;
+    }
+    solve_block(g, y);
+    for (int k = first_[g]; k < first_[g + 1]; ++k) X[condensed_[k]] = y[k - first_[g]];
   }
   return X;
 }
 
-Eigen::VectorXd DiagonalCondensation::expand_reaction(const Eigen::VectorXd& lambda_v) const {
+Eigen::VectorXd StaticCondensation::expand_reaction(const Eigen::VectorXd& lambda_v) const {
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(n());
   for (int k = 0; k < n_kept(); ++k) lambda[kept_[k]] = lambda_v[k];
   return lambda;

@@ -51,7 +51,7 @@ void StepQPScheme::build(double a, double m) {
     Eigen::VectorXd keep = p_.lower;
     for (const FrictionNode& node : p_.friction)
       for (int t : node.tangential) keep[t] = 0.0;
-    DiagonalCondensation c(qp_.S, keep, p_.upper);
+    StaticCondensation c(qp_.S, keep, p_.upper, bubble_unknowns(p_));
     if (c.n_condensed() > 0) {
       qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
       qp_.lower = c.kept(p_.lower);

@@ -10,11 +10,13 @@
 // sides.
 //
 // Static condensation (qp/condensation.hpp).  With an explicit S, the unbounded unknowns
-// whose block of S is diagonal and whose elimination makes no fill — the bubbles of
-// P1+/P0 — are eliminated once, when S is built: the solver sees the QP on the kept
-// unknowns, S_c = S_vv − S_vb S_bb⁻¹ S_bv, r_c = r_v − S_vb S_bb⁻¹ r_b, and each step ends
-// with the back-substitution X_b = S_bb⁻¹ (r_b − S_bv X_v).  The same QP, a third of the
-// unknowns for P1+/P0; the stats (iterations, KKT residual) are those of the condensed
+// whose block of S is block diagonal and whose elimination makes no fill — the bubbles
+// of P1+/P0, each cell's as one block (bubble_unknowns: one unknown a component) — are
+// eliminated once, when S is built: the solver sees the QP on the kept unknowns,
+// S_c = S_vv − S_vb S_bb⁻¹ S_bv, r_c = r_v − S_vb S_bb⁻¹ r_b, and each step ends with the
+// back-substitution X_b = S_bb⁻¹ (r_b − S_bv X_v).  The same QP, a third of the unknowns
+// for P1+/P0 in the plane, a seventh on the unit cube's tetrahedra; the stats
+// (iterations, KKT residual) are those of the condensed
 // QP.  SchemeParameters::condense = false solves the full QP instead.
 //
 // Friction (problems/friction.hpp).  When the problem has friction nodes, the step is
@@ -122,7 +124,7 @@ class StepQPScheme : public TimeScheme {
   double a_ = 0.0, m_ = 0.0;
   bool condense_;
   std::optional<SparseMatrix> M_;
-  std::optional<DiagonalCondensation> condensation_;
+  std::optional<StaticCondensation> condensation_;
   BoundQP qp_;
   Eigen::VectorXd D_;  // scaling_diagonal(qp_) for on_line, made on first use after a new S
   QPResult last_;
