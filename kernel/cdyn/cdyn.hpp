@@ -12,6 +12,7 @@
 #include "cdyn/mesh/cell_geometry.hpp"
 #include "cdyn/mesh/mesh.hpp"
 #include "cdyn/mesh/point_location.hpp"
+#include "cdyn/mesh/sub_mesh.hpp"
 // fe/
 #include "cdyn/fe/assembly.hpp"
 #include "cdyn/fe/cell_coefficient.hpp"

@@ -26,6 +26,8 @@ std::vector<int> Mesh::part_vertices(const std::vector<int>& parts) const {
     if (std::find(parts.begin(), parts.end(), f.part) == parts.end()) continue;
     for (int k = 0; k < dim; ++k) v.push_back(f.vertices[k]);
   }
+  for (const auto& [part, vertex] : parts_elsewhere)
+    if (std::find(parts.begin(), parts.end(), part) != parts.end()) v.push_back(vertex);
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
   return v;

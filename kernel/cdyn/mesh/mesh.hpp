@@ -49,6 +49,9 @@ struct Mesh {
   std::vector<std::string> part_names;         // boundary part names
   std::vector<int> cell_region;                // region tag of each cell (gmsh physical group), or empty
   std::vector<std::string> region_names;       // names of those regions
+  // A sub-mesh's vertices on a boundary part through facets of another subdomain's
+  // cells (mesh/sub_mesh.hpp), as (part, vertex) pairs: part_vertices counts them.
+  std::vector<std::array<int, 2>> parts_elsewhere;
 
   int n_vertices() const { return static_cast<int>(vertices.size()); }
   int n_cells() const { return static_cast<int>(cells.size()); }

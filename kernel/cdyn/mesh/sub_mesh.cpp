@@ -1,0 +1,85 @@
+// mesh/sub_mesh.cpp — the sub-mesh of some cells (mesh/sub_mesh.hpp).
+#include "cdyn/mesh/sub_mesh.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <string>
+
+#include "cdyn/base/error.hpp"
+
+namespace cdyn {
+
+namespace {
+
+using FacetKey = std::array<int, 3>;
+
+// A facet's vertices sorted, the unused entries last.
+FacetKey facet_key(const int* vertices, int n) {
+  constexpr int kUnused = std::numeric_limits<int>::max();
+  FacetKey key{kUnused, kUnused, kUnused};
+  for (int k = 0; k < n; ++k) key[k] = vertices[k];
+  std::sort(key.begin(), key.end());
+  return key;
+}
+
+}  // namespace
+
+SubMesh sub_mesh(const Mesh& mesh, const std::vector<int>& cells) {
+  const int d = mesh.dim;
+  SubMesh sub;
+  sub.cell = cells;
+  std::vector<int> local(mesh.n_vertices(), -1);
+  std::vector<char> taken(mesh.n_cells(), 0);
+  for (int c : cells) {
+    if (c < 0 || c >= mesh.n_cells()) throw InputError("sub_mesh: cell " + std::to_string(c) + " does not exist");
+    if (taken[c]) throw InputError("sub_mesh: cell " + std::to_string(c) + " is listed twice");
+    taken[c] = 1;
+    for (int k = 0; k <= d; ++k) local[mesh.cells[c][k]] = 0;
+  }
+  // the vertices in the mesh's order, so that P_r keeps the order of the unknowns
+  for (int v = 0; v < mesh.n_vertices(); ++v)
+    if (local[v] == 0) {
+      local[v] = static_cast<int>(sub.vertex.size());
+      sub.vertex.push_back(v);
+    }
+
+  Mesh& m = sub.mesh;
+  m.dim = d;
+  m.part_names = mesh.part_names;
+  m.region_names = mesh.region_names;
+  for (int v : sub.vertex) m.vertices.push_back(mesh.vertices[v]);
+  std::set<FacetKey> own_facets;  // the facets of the sub-mesh's cells, in the mesh's vertices
+  for (int c : cells) {
+    Cell cell{-1, -1, -1, -1};
+    for (int k = 0; k <= d; ++k) cell[k] = local[mesh.cells[c][k]];
+    m.cells.push_back(cell);
+    if (!mesh.cell_region.empty()) m.cell_region.push_back(mesh.cell_region[c]);
+    for (int skip = 0; skip <= d; ++skip) {  // facet `skip`: the cell without its vertex skip
+      int f[3], n = 0;
+      for (int k = 0; k <= d; ++k)
+        if (k != skip) f[n++] = mesh.cells[c][k];
+      own_facets.insert(facet_key(f, d));
+    }
+  }
+
+  // A boundary facet lies in exactly one cell: it is this sub-mesh's when its cell is.
+  // The others' vertices held here are on their part all the same.
+  for (const BoundaryFacet& f : mesh.boundary) {
+    if (own_facets.count(facet_key(f.vertices.data(), d))) {
+      BoundaryFacet g = f;
+      for (int k = 0; k < d; ++k) g.vertices[k] = local[f.vertices[k]];
+      m.boundary.push_back(g);
+    } else if (f.part >= 0) {
+      for (int k = 0; k < d; ++k)
+        if (local[f.vertices[k]] >= 0) m.parts_elsewhere.push_back({f.part, local[f.vertices[k]]});
+    }
+  }
+  for (const auto& [part, v] : mesh.parts_elsewhere)
+    if (local[v] >= 0) m.parts_elsewhere.push_back({part, local[v]});
+  std::sort(m.parts_elsewhere.begin(), m.parts_elsewhere.end());
+  m.parts_elsewhere.erase(std::unique(m.parts_elsewhere.begin(), m.parts_elsewhere.end()), m.parts_elsewhere.end());
+  return sub;
+}
+
+}  // namespace cdyn
