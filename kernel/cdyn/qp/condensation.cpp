@@ -27,6 +27,21 @@ bool stored(const SparseMatrix& S, int i, int j) {
 // such an unknown is not a bubble, and eliminating it would not pay.
 constexpr int kMaxDegree = 32;
 
+// S_vv: the rows and columns of S on the kept unknowns (increasing), compressed.
+SparseMatrix kept_block(const SparseMatrix& S, const std::vector<int>& kept, const std::vector<int>& kept_of) {
+  const int n_kept = static_cast<int>(kept.size());
+  SparseMatrix S_vv(n_kept, n_kept);
+  std::vector<int> count(n_kept, 0);
+  for (int j = 0; j < n_kept; ++j)
+    for (SparseMatrix::InnerIterator it(S, kept[j]); it; ++it) count[j] += kept_of[it.row()] >= 0;
+  S_vv.reserve(count);
+  for (int j = 0; j < n_kept; ++j)  // rows in increasing order: kept_of is increasing
+    for (SparseMatrix::InnerIterator it(S, kept[j]); it; ++it)
+      if (kept_of[it.row()] >= 0) S_vv.insert(kept_of[it.row()], j) = it.value();
+  S_vv.makeCompressed();
+  return S_vv;
+}
+
 // S_GG: the dense block of S on the unknowns G.
 Eigen::MatrixXd block_of(const SparseMatrix& S, const std::vector<int>& G) {
   Eigen::MatrixXd block = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(G.size()), static_cast<Eigen::Index>(G.size()));
@@ -131,35 +146,29 @@ StaticCondensation::StaticCondensation(const SparseMatrix& S, const Eigen::Vecto
       kept_.push_back(i);
     }
 
-  // S_c: the kept block, then −S_vg S_gg⁻¹ S_gv for each condensed block g.
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(S_.nonZeros());
-  for (int j : kept_)
-    for (SparseMatrix::InnerIterator it(S_, j); it; ++it)
-      if (kept_of_[it.row()] >= 0) t.emplace_back(kept_of_[it.row()], kept_of_[j], it.value());
+  // S_c: the kept block S_vv, then −S_vg S_gg⁻¹ S_gv for each condensed block g, added in
+  // place: S_c has S_vv's pattern (no fill), so no list of entries is made (in 3D a
+  // block's 12 kept neighbours give 144 entries: 28M at n = 32).
+  S_c_ = kept_block(S_, kept_, kept_of_);
+  // S_c(i, j) += u for kept unknowns i, j (in S's numbering), and S_c(j, i) too: both
+  // triangles get the same sums in the same order (S_c exactly symmetric)
+  auto add = [&](int i, int j, double u) {
+    const int ki = kept_of_[i], kj = kept_of_[j];
+    S_c_.coeffRef(ki, kj) += u;
+    if (ki != kj) S_c_.coeffRef(kj, ki) += u;
+  };
   for (int g = 0; g + 1 < static_cast<int>(first_.size()); ++g) {
     const int m = first_[g + 1] - first_[g];
     const int* members = condensed_.data() + first_[g];
-    if (m == 1) {
-      const int b = members[0];
-      const double S_bb = inverse_[inverse_at_[g]];
-      for (SparseMatrix::InnerIterator it(S_, b); it; ++it) {
-        if (it.row() == b) continue;
-        for (SparseMatrix::InnerIterator jt(S_, b); jt; ++jt) {
-          if (jt.row() == b) continue;
-          t.emplace_back(kept_of_[it.row()], kept_of_[jt.row()], -it.value() * jt.value() / S_bb);
-        }
-      }
-      continue;
-    }
-    // S_vg: the block's kept neighbours (rows) by its unknowns (columns)
+    // the block's kept neighbours and S_vg (rows: neighbours, columns: the block's unknowns)
     neighbours.clear();
     for (int p = 0; p < m; ++p)
       for (SparseMatrix::InnerIterator it(S_, members[p]); it; ++it)
         if (kept_of_[it.row()] >= 0) neighbours.push_back(static_cast<int>(it.row()));
     std::sort(neighbours.begin(), neighbours.end());
     neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    Eigen::MatrixXd S_vg = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(neighbours.size()), m);
+    const int nn = static_cast<int>(neighbours.size());
+    Eigen::MatrixXd S_vg = Eigen::MatrixXd::Zero(nn, m);
     for (int p = 0; p < m; ++p)
       for (SparseMatrix::InnerIterator it(S_, members[p]); it; ++it)
         if (kept_of_[it.row()] >= 0) {
@@ -167,24 +176,28 @@ StaticCondensation::StaticCondensation(const SparseMatrix& S, const Eigen::Vecto
           S_vg(i - neighbours.begin(), p) = it.value();
         }
     const Eigen::Map<const Eigen::MatrixXd> inverse(inverse_.data() + inverse_at_[g], m, m);
-    const Eigen::MatrixXd update = S_vg * inverse * S_vg.transpose();
-    for (std::size_t q = 0; q < neighbours.size(); ++q)
-      for (std::size_t p = 0; p < neighbours.size(); ++p)
-        t.emplace_back(kept_of_[neighbours[p]], kept_of_[neighbours[q]], -update(p, q));
+    const Eigen::MatrixXd Y = m == 1 ? Eigen::MatrixXd(S_vg / inverse(0, 0)) : Eigen::MatrixXd(S_vg * inverse);
+    for (int q = 0; q < nn; ++q)
+      for (int p = 0; p <= q; ++p) add(neighbours[p], neighbours[q], -Y.row(p).dot(S_vg.row(q)));
   }
-  S_c_.resize(n_kept(), n_kept());
-  S_c_.setFromTriplets(t.begin(), t.end());
-  // exact symmetry (duplicates are summed in different orders in the two triangles)
-  S_c_ = 0.5 * (S_c_ + SparseMatrix(S_c_.transpose()));
-  S_c_.makeCompressed();
 
-  // S_bv from S's columns b: for each kept j, its entries S_jb in the order of b
-  std::vector<Eigen::Triplet<double>> bv;
-  for (int k = 0; k < n_condensed(); ++k)
-    for (SparseMatrix::InnerIterator it(S_, condensed_[k]); it; ++it)
-      if (kept_of_[it.row()] >= 0) bv.emplace_back(k, kept_of_[it.row()], it.value());
-  S_bv_.resize(n_condensed(), n_kept());
-  S_bv_.setFromTriplets(bv.begin(), bv.end());
+  // S_bv: column j lists the condensed neighbours k of kept j (S's column j, its rows b
+  // renumbered by their place in condensed_, sorted)
+  std::vector<int> place(n, -1);
+  for (int k = 0; k < n_condensed(); ++k) place[condensed_[k]] = k;
+  S_bv_ = SparseMatrix(n_condensed(), n_kept());
+  std::vector<int> count(n_kept(), 0);
+  for (int j = 0; j < n_kept(); ++j)
+    for (SparseMatrix::InnerIterator it(S_, kept_[j]); it; ++it) count[j] += place[it.row()] >= 0;
+  S_bv_.reserve(count);
+  std::vector<std::pair<int, double>> column;
+  for (int j = 0; j < n_kept(); ++j) {
+    column.clear();
+    for (SparseMatrix::InnerIterator it(S_, kept_[j]); it; ++it)
+      if (place[it.row()] >= 0) column.emplace_back(place[it.row()], it.value());
+    std::sort(column.begin(), column.end());
+    for (const auto& [k, v] : column) S_bv_.insert(k, j) = v;
+  }
   S_bv_.makeCompressed();
 }
 
