@@ -46,6 +46,7 @@
 #include "cdyn/problems/oscillator.hpp"
 #include "cdyn/problems/rigid_obstacle.hpp"
 #include "cdyn/problems/scalar_wave.hpp"
+#include "cdyn/problems/subdomain.hpp"
 // exact/
 #include "cdyn/exact/bar_exact.hpp"
 // wellposedness/

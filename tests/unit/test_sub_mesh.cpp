@@ -14,6 +14,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/mesh/sub_mesh.hpp"
 #include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/problems/subdomain.hpp"
 #include "cdyn/qp/condensation.hpp"
 
 using namespace cdyn;
@@ -34,23 +35,6 @@ ElasticContactData data(int dim) {
   d.obstacle_point = {0.0, -0.01, -0.01};
   d.obstacle_normal = dim == 2 ? Point{0.2, 1.0, 0.0} : Point{0.2, 0.1, 1.0};
   return d;
-}
-
-// The whole problem's free dof of each of subdomain r's free dofs (the map P_r).
-std::vector<int> global_free(const ConstrainedProblem& whole, const ConstrainedProblem& part, const SubMesh& sub) {
-  const FESpace& W = *whole.W;
-  const FESpace& Wr = *part.W;
-  const int nv = sub.mesh.n_vertices(), k = W.components();
-  std::vector<int> P;
-  for (int i : part.bc->free_dofs()) {
-    const int s = i / k, comp = i % k;
-    const int gs = s < nv ? sub.vertex[s] : W.mesh().n_vertices() + sub.cell[s - nv];  // a vertex or a bubble
-    EXPECT_LT(s, Wr.n_scalar_dofs());
-    const int g = whole.bc->free_index(W.dof(gs, comp));
-    EXPECT_GE(g, 0) << "a free dof of the subdomain is fixed in the whole problem";
-    P.push_back(g);
-  }
-  return P;
 }
 
 Eigen::MatrixXd place(const SparseMatrix& Ar, const std::vector<int>& P, int n) {
@@ -83,7 +67,7 @@ void expect_sums_to_whole(const Mesh& mesh) {
     const SubMesh sub = sub_mesh(mesh, cells);
     touching += !sub.mesh.parts_elsewhere.empty();
     const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
-    const std::vector<int> P = global_free(whole, part, sub);
+    const std::vector<int> P = unknowns_in_whole(whole, part, sub);
     A += place(part.A, P, n);
     M += place(*part.mass->matrix(), P, n);
     const Eigen::VectorXd Lr = part.load(0.0);

@@ -56,7 +56,8 @@ Eigen::MatrixXd block_of(const SparseMatrix& S, const std::vector<int>& G) {
 }  // namespace
 
 StaticCondensation::StaticCondensation(const SparseMatrix& S, const Eigen::VectorXd& lower,
-                                       const Eigen::VectorXd& upper, const std::vector<std::vector<int>>& blocks)
+                                       const Eigen::VectorXd& upper, const std::vector<std::vector<int>>& blocks,
+                                       bool single_unknowns)
     : S_(S) {
   S_.makeCompressed();
   const int n = static_cast<int>(S_.rows());
@@ -120,7 +121,7 @@ StaticCondensation::StaticCondensation(const SparseMatrix& S, const Eigen::Vecto
   }
   // then single unknowns, fewest neighbours first
   std::vector<int> singles;
-  for (int j = 0; j < n; ++j)
+  for (int j = 0; j < n && single_unknowns; ++j)
     if (candidate(j) && !condensed[j]) singles.push_back(j);
   std::stable_sort(singles.begin(), singles.end(), [&](int a, int b) { return degree[a] < degree[b]; });
   for (int b : singles) try_condense({b});

@@ -50,8 +50,11 @@ class StaticCondensation {
   // S symmetric (both triangles stored, compressed), bounds of the same size; blocks:
   // groups of unknowns to condense together where the rules above allow (each unknown
   // in one block at most; at most kMaxBlock unknowns a block).  InputError otherwise.
+  // single_unknowns = false: the blocks only — for a subdomain's share of S
+  // (mesh/sub_mesh.hpp), whose pattern is not the whole S's: a vertex whose neighbours
+  // are a clique in the share may not be in the sum, while a cell's bubble is in both.
   StaticCondensation(const SparseMatrix& S, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                     const std::vector<std::vector<int>>& blocks = {});
+                     const std::vector<std::vector<int>>& blocks = {}, bool single_unknowns = true);
   static constexpr int kMaxBlock = 3;
 
   int n() const { return static_cast<int>(kept_of_.size()); }        // all unknowns
