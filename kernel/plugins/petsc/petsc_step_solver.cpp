@@ -140,22 +140,28 @@ class PetscStepSolver : public StepSolver {
 
 }  // namespace
 
-StepSolver* new_petsc_step_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner) {
+SolverChoice choose_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner) {
   if (!(options.tol > 0)) throw InputError("tol", "must be a positive number");
-  const Algorithm algorithm = lookup(kAlgorithms, name, "solver", "a step solver");
+  SolverChoice choice;
+  choice.algorithm = lookup(kAlgorithms, name, "solver", "a step solver");
   // The default, Jacobi: the step matrix is well conditioned when dt ∝ h (CG needs a
   // few dozen iterations), and an algebraic multigrid's set-up at every change of the
   // active set costs far more than it saves (measured, docs/distributed.md: GAMG 3.6 s
   // a step where Jacobi takes 0.09 s on the 16³ cube).
-  const Preconditioner pc =
-      lookup(kPreconditioners, preconditioner.empty() ? "jacobi" : preconditioner, "pc", "a preconditioner");
+  choice.pc = lookup(kPreconditioners, preconditioner.empty() ? "jacobi" : preconditioner, "pc", "a preconditioner");
+  choice.pc_given = !preconditioner.empty();
   // TAO's and SNESVI's Krylov solves see a matrix of another size at every iteration,
   // which PETSc 3.18's GAMG does not take (its coarse solver keeps the first sizes)
-  if (pc == Preconditioner::gamg && algorithm != Algorithm::pdas)
+  if (choice.pc == Preconditioner::gamg && choice.algorithm != Algorithm::pdas)
     throw InputError("pc", "gamg cannot precondition " + name +
                                ", whose systems change size with the free set (use hypre or jacobi)");
+  return choice;
+}
+
+StepSolver* new_petsc_step_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner) {
+  const SolverChoice choice = choose_solver(name, options, preconditioner);
   session::start();
-  return new PetscStepSolver(name, algorithm, pc, !preconditioner.empty(), options);
+  return new PetscStepSolver(name, choice.algorithm, choice.pc, choice.pc_given, options);
 }
 
 }  // namespace cdyn::petsc

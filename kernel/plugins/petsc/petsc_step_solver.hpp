@@ -17,8 +17,18 @@
 #include <string>
 
 #include "cdyn/qp/step_solver.hpp"
+#include "distributed_qp.hpp"
 
 namespace cdyn::petsc {
+
+// The algorithm and preconditioner of a solver's name and preconditioner (below);
+// InputError naming `solver`, `pc` or `tol` for what the back end does not have.
+struct SolverChoice {
+  Algorithm algorithm = Algorithm::pdas;
+  Preconditioner pc = Preconditioner::jacobi;
+  bool pc_given = false;  // solver.pc set (refused in saddle form)
+};
+SolverChoice choose_solver(const std::string& name, const QPOptions& options, const std::string& preconditioner);
 
 // name: pdas, tao_tron, tao_gpcg, tao_bqnls, tao_bncg or snesvi; preconditioner: gamg
 // (pdas only), hypre or jacobi, empty for the default (jacobi); InputError otherwise.

@@ -98,4 +98,9 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
   return std::unique_ptr<StepSolver>(plugin().make_solver(name, options, preconditioner));
 }
 
+std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
+                                                        const std::string& preconditioner) {
+  return std::unique_ptr<StepSolver>(plugin().make_subdomain_solver(global, "pdas", options, preconditioner));
+}
+
 }  // namespace cdyn::petsc

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cdyn/qp/step_solver.hpp"
 
@@ -49,5 +50,14 @@ void refuse(const std::string& why);
 // hypre or jacobi, empty for the default (jacobi).
 std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, const QPOptions& options,
                                                    const std::string& preconditioner = "");
+
+// A step solver for one subdomain's share of the step QP (mesh/sub_mesh.hpp), every rank
+// of the session calling solve() at once with its own S_r, r_r and the whole problem's
+// bounds on its unknowns, which sit at `global` in the whole problem
+// (problems/subdomain.hpp): the QP solved is Σ_r P_rᵀ S_r P_r, Σ_r P_rᵀ r_r; each rank
+// gets the solution and the reaction on its own unknowns.  pdas only, explicit S
+// (kernel/plugins/petsc/subdomain_step_solver.hpp).  Collective from construction on.
+std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
+                                                        const std::string& preconditioner = "");
 
 }  // namespace cdyn::petsc

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "cdyn/qp/step_solver.hpp"
 
@@ -24,9 +25,12 @@ struct PluginTable {
   void (*finalize)();
   // a new StepSolver (the caller owns it); InputError for an unknown name or preconditioner
   StepSolver* (*make_solver)(const std::string& name, const QPOptions& options, const std::string& preconditioner);
+  // a new StepSolver of one subdomain's share, every rank solving at once (the caller owns it)
+  StepSolver* (*make_subdomain_solver)(const std::vector<int>& global, const std::string& name,
+                                       const QPOptions& options, const std::string& preconditioner);
 };
 
-constexpr int kPluginVersion = 1;
+constexpr int kPluginVersion = 2;
 
 }  // namespace cdyn::petsc
 

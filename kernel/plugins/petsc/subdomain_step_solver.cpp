@@ -1,0 +1,208 @@
+// subdomain_step_solver.cpp — the step QP summed from the subdomains' shares and solved
+// on every rank at once; see kernel/plugins/petsc/subdomain_step_solver.hpp.
+#include "subdomain_step_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cmath>
+
+#include "cdyn/base/error.hpp"
+#include "cdyn/qp/checks.hpp"
+#include "cdyn/qp/kkt.hpp"
+#include "distributed_qp.hpp"
+#include "petsc_step_solver.hpp"
+#include "session.hpp"
+
+namespace cdyn::petsc {
+
+namespace {
+
+MPI_Comm world() { return PETSC_COMM_WORLD; }
+
+double global_max(double local) {
+  MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_MAX, world());
+  return local;
+}
+
+// v[i] at the unknowns `at` (PETSc indices) of a distributed vector, as a local vector.
+Eigen::VectorXd values_at(Vec v, const std::vector<PetscInt>& at) {
+  const PetscInt n = static_cast<PetscInt>(at.size());
+  Owned<IS, ISDestroy> from;
+  Owned<Vec, VecDestroy> local;
+  Owned<VecScatter, VecScatterDestroy> scatter;
+  check(ISCreateGeneral(PETSC_COMM_SELF, n, at.data(), PETSC_COPY_VALUES, from.out()), "ISCreateGeneral");
+  check(VecCreateSeq(PETSC_COMM_SELF, n, local.out()), "VecCreateSeq");
+  check(VecScatterCreate(v, from, local, nullptr, scatter.out()), "VecScatterCreate");
+  check(VecScatterBegin(scatter, v, local, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check(VecScatterEnd(scatter, v, local, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  Eigen::VectorXd out(n);
+  const PetscScalar* a = nullptr;
+  VecGetArrayRead(local, &a);
+  std::copy(a, a + n, out.data());
+  VecRestoreArrayRead(local, &a);
+  return out;
+}
+
+class SubdomainStepSolver : public StepSolver {
+ public:
+  SubdomainStepSolver(const std::vector<int>& global, const std::string& name, const SolverChoice& choice,
+                      const QPOptions& options)
+      : global_(global), options_(options), name_(name), choice_(choice) {
+    if (choice.algorithm != Algorithm::pdas)  // (TAO and SNESVI: not yet tried on summed shares)
+      throw InputError("solver", "the subdomains' step QP is solved by the petsc pdas only (not " + name + ")");
+    number_unknowns();
+  }
+  ~SubdomainStepSolver() override {
+    if (diagonal_) VecDestroy(&diagonal_);
+  }
+  std::string name() const override { return "petsc " + name_ + " (subdomains)"; }
+
+  QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
+    const auto start = std::chrono::steady_clock::now();
+    if (qp.saddle) throw InputError("solver", name() + " takes an explicit step matrix (not the saddle form)");
+    if (qp.size() != static_cast<int>(global_.size()))
+      throw InputError(name() + ": the QP has " + std::to_string(qp.size()) + " unknowns, the subdomain " +
+                       std::to_string(global_.size()));
+    // S assembled again when any rank's share changed
+    double changed = checked_.check(qp, /*positive_definite=*/false, name()) ? 1.0 : 0.0;
+    if (global_max(changed) > 0 || !q_.S) assemble_matrix(qp.S);
+    assemble_vectors(qp, warm_start);
+
+    SolveSettings settings;
+    settings.n = n_;
+    settings.warm = warm_start && warm_start->X.size() == qp.size() && warm_start->reaction.size() == qp.size();
+    settings.algorithm = choice_.algorithm;
+    settings.pc = choice_.pc;
+    settings.tol = options_.tol;
+    settings.max_iterations = options_.max_iterations;
+    QPResult result;
+    try {
+      result.iterations = solve_collectively(q_, settings);
+    } catch (const NumericalError& e) {  // (the same on every rank: reasons and tests are global)
+      throw NumericalError(name() + ": " + e.what());
+    }
+    check(MatMult(q_.S, q_.X, q_.reaction), "MatMult");  // λ = S X − r
+    check(VecAXPY(q_.reaction, -1.0, q_.r), "VecAXPY");
+    result.X = values_at(q_.X, petsc_of_);
+    result.reaction = values_at(q_.reaction, petsc_of_);
+    const Eigen::VectorXd D = values_at(diagonal_, petsc_of_);
+    result.kkt_residual = kkt_over_ranks(qp, result, D);
+    result.active = active_set(qp, result.X, result.reaction, D);
+    result.converged = result.kkt_residual <= options_.tol;
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report_failure(name(), options_, result, "");
+    return result;
+  }
+
+ private:
+  // Owners (the lowest rank holding each unknown) and PETSc's numbering.
+  void number_unknowns() {
+    int me = 0, p = 1;
+    MPI_Comm_rank(world(), &me), MPI_Comm_size(world(), &p);
+    int n = global_.empty() ? 0 : *std::max_element(global_.begin(), global_.end()) + 1;
+    MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_INT, MPI_MAX, world());
+    std::vector<int> owner(n, INT_MAX);
+    for (int g : global_) owner[g] = me;
+    MPI_Allreduce(MPI_IN_PLACE, owner.data(), n, MPI_INT, MPI_MIN, world());
+    std::vector<PetscInt> first(p + 1, 0), petsc(n, -1);
+    for (int g = 0; g < n; ++g) {
+      if (owner[g] == INT_MAX) throw InputError(name() + ": unknown " + std::to_string(g) + " is in no subdomain");
+      ++first[owner[g] + 1];
+    }
+    for (int k = 0; k < p; ++k) first[k + 1] += first[k];
+    std::vector<PetscInt> next(first.begin(), first.end() - 1);
+    for (int g = 0; g < n; ++g) petsc[g] = next[owner[g]]++;
+    n_ = n;
+    q_.n = n;
+    q_.first = first[me], q_.last = first[me + 1];
+    petsc_of_.resize(global_.size());
+    for (std::size_t i = 0; i < global_.size(); ++i) petsc_of_[i] = petsc[global_[i]];
+  }
+
+  // S = Σ_r P_rᵀ S_r P_r: each rank adds its entries, PETSc sends them to their rows' owners.
+  void assemble_matrix(const SparseMatrix& S_r) {
+    if (q_.S) MatDestroy(&q_.S);
+    int widest = 0;  // preallocation: a row of the sum has at most the ranks' widest row, twice
+    for (int j = 0; j < S_r.outerSize(); ++j) widest = std::max(widest, static_cast<int>(S_r.innerVector(j).nonZeros()));
+    MPI_Allreduce(MPI_IN_PLACE, &widest, 1, MPI_INT, MPI_MAX, world());
+    const PetscInt local = q_.last - q_.first;
+    check(MatCreateAIJ(world(), local, local, n_, n_, 2 * widest, nullptr, 2 * widest, nullptr, &q_.S), "MatCreateAIJ");
+    check(MatSetOption(q_.S, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+    std::vector<PetscInt> rows;
+    std::vector<PetscScalar> values;
+    for (int j = 0; j < S_r.outerSize(); ++j) {  // S_r symmetric: column j is row j
+      rows.clear(), values.clear();
+      for (SparseMatrix::InnerIterator it(S_r, j); it; ++it)
+        rows.push_back(petsc_of_[it.row()]), values.push_back(it.value());
+      const PetscInt row = petsc_of_[j];
+      check(MatSetValues(q_.S, 1, &row, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
+            "MatSetValues");
+    }
+    check(MatAssemblyBegin(q_.S, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(q_.S, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    for (Vec* v : {&q_.r, &q_.lower, &q_.upper, &q_.X, &q_.reaction, &diagonal_})
+      if (!*v) check(MatCreateVecs(q_.S, v, nullptr), "MatCreateVecs");
+    check(MatGetDiagonal(q_.S, diagonal_), "MatGetDiagonal");
+  }
+
+  // r summed; the bounds, the warm start and its reaction written by every rank holding
+  // the unknown (the same values).
+  void assemble_vectors(const BoundQP& qp, const QPResult* warm) {
+    const PetscInt n = static_cast<PetscInt>(petsc_of_.size());
+    check(VecSet(q_.r, 0.0), "VecSet");
+    check(VecSetValues(q_.r, n, petsc_of_.data(), qp.r.data(), ADD_VALUES), "VecSetValues");
+    auto insert = [&](Vec v, const Eigen::VectorXd& x) {
+      check(VecSetValues(v, n, petsc_of_.data(), x.data(), INSERT_VALUES), "VecSetValues");
+    };
+    insert(q_.lower, qp.lower), insert(q_.upper, qp.upper);
+    const bool use_warm = warm && warm->X.size() == qp.size() && warm->reaction.size() == qp.size();
+    if (use_warm) {
+      insert(q_.X, warm->X), insert(q_.reaction, warm->reaction);
+    } else {
+      check(VecSet(q_.X, 0.0), "VecSet"), check(VecSet(q_.reaction, 0.0), "VecSet");
+    }
+    for (Vec v : {q_.r, q_.lower, q_.upper, q_.X, q_.reaction}) {
+      check(VecAssemblyBegin(v), "VecAssemblyBegin");
+      check(VecAssemblyEnd(v), "VecAssemblyEnd");
+    }
+  }
+
+  // max_i |natural residual_i| / max(‖X‖∞, ‖D⁻¹r‖∞) over the whole problem (qp/kkt.hpp):
+  // each rank measures the rows it owns, with the summed r.
+  double kkt_over_ranks(const BoundQP& qp, const QPResult& result, const Eigen::VectorXd& D) const {
+    const Eigen::VectorXd r = values_at(q_.r, petsc_of_);
+    BoundQP whole_rows;  // this rank's unknowns with the summed r
+    whole_rows.r = r, whole_rows.lower = qp.lower, whole_rows.upper = qp.upper;
+    const Eigen::VectorXd F = natural_residual(whole_rows, result.X, result.reaction, D);
+    double f = 0.0, scale = 0.0;
+    for (Eigen::Index i = 0; i < F.size(); ++i) {
+      f = std::max(f, std::abs(F[i]));
+      scale = std::max({scale, std::abs(result.X[i]), std::abs(r[i] / D[i])});
+    }
+    if (!std::isfinite(f)) f = INFINITY;
+    f = global_max(f), scale = global_max(scale);
+    return scale > 0 ? f / scale : f;
+  }
+
+  std::vector<int> global_;
+  std::vector<PetscInt> petsc_of_;  // PETSc's index of each local unknown
+  int n_ = 0;
+  QPOptions options_;
+  std::string name_;
+  SolverChoice choice_;
+  CheckedMatrices checked_;
+  DistributedQP q_;
+  Vec diagonal_ = nullptr;  // diag S, for the KKT measure and the active set
+};
+
+}  // namespace
+
+StepSolver* new_subdomain_step_solver(const std::vector<int>& global, const std::string& name,
+                                      const QPOptions& options, const std::string& preconditioner) {
+  const SolverChoice choice = choose_solver(name, options, preconditioner);
+  session::start();
+  return new SubdomainStepSolver(global, name, choice, options);
+}
+
+}  // namespace cdyn::petsc

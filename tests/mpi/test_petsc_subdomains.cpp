@@ -1,0 +1,151 @@
+// test_petsc_subdomains.cpp — the step QP summed from the subdomains' shares
+// (qp/petsc/backend.hpp, make_petsc_subdomain_solver) against the whole problem's QP
+// solved by the native pdas, on one process and on two.
+//
+// Every rank runs every test (no rank commands the others): it builds the elastic
+// contact problem on the whole mesh (the reference, solved serially on each rank) and on
+// the sub-mesh of its own slab of cells (mesh/sub_mesh.hpp), condenses its share of the
+// step matrix S = A + k M and of r = k M w + L (each a sum over cells, the bubbles each in
+// one cell: tests/unit/test_sub_mesh.cpp), and the ranks solve the summed QP together.
+// Each rank's unknowns must get the whole QP's solution to 1e-8 of ‖X‖∞ (the KKT
+// tolerance's effect at tol = 1e-12, as tests/mpi/test_petsc_step_solvers.cpp), the same
+// held unknowns, its reaction, and a KKT residual ≤ tol; a warm start from the solution
+// takes one iteration.  The body is clamped on its left side; the plane is inclined
+// (rotated unknowns at the contact nodes) and rises towards the free end, onto which
+// gravity bends the body: a part of the contact nodes is held, on both ranks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "cdyn/mesh/sub_mesh.hpp"
+#include "cdyn/problems/elastic_contact.hpp"
+#include "cdyn/problems/subdomain.hpp"
+#include "cdyn/qp/condensation.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
+
+namespace cdyn {
+namespace {
+
+constexpr double kTol = 1e-12;
+constexpr double k = 100.0;  // m/dt² of a step with dt = 0.1
+
+ElasticContactData data(int dim, const MassSpec& mass) {
+  ElasticContactData d;
+  d.mass = mass;
+  const Lame lame = lame_parameters(1.0, 0.3);
+  d.lambda = lame.lambda, d.mu = lame.mu;
+  d.gravity = {0.0, dim == 2 ? -3.0 : 0.0, dim == 3 ? -3.0 : 0.0};
+  d.dirichlet_parts = {3};  // "left"
+  d.contact_parts = {dim == 2 ? 0 : 4};  // "bottom"
+  // a plane rising towards x = 1, 0.002 below the body's corner there
+  d.obstacle_point = {1.0, dim == 2 ? -0.002 : 0.0, dim == 3 ? -0.002 : 0.0};
+  d.obstacle_normal = dim == 2 ? Point{-0.1, 1.0, 0.0} : Point{-0.1, 0.0, 1.0};
+  return d;
+}
+
+// The step QP of a problem: S = A + k M and r = k M w + L(0) with w = −0.005 on every
+// unknown, its bubbles condensed (the blocks only: the rule for single unknowns reads
+// S's pattern, which a subdomain's share does not have; the same on the whole problem
+// and on a share).
+struct StepQP {
+  StaticCondensation condensation;
+  BoundQP qp;
+};
+StepQP step_qp(const ConstrainedProblem& p) {
+  const SparseMatrix M = *p.mass->matrix();
+  SparseMatrix S = p.A + k * M;
+  S.makeCompressed();
+  const Eigen::VectorXd r = k * (M * Eigen::VectorXd::Constant(p.n_free(), -0.005)) + p.load(0.0);
+  StaticCondensation c(S, p.lower, p.upper, bubble_unknowns(p), /*single_unknowns=*/false);
+  BoundQP qp;
+  qp.S = c.S_c();
+  qp.r = c.reduce(r);
+  qp.lower = c.kept(p.lower), qp.upper = c.kept(p.upper);
+  return {std::move(c), std::move(qp)};
+}
+
+// The kept unknowns' indices among all (the condensed QP's numbering).
+std::vector<int> kept_indices(const StaticCondensation& c) {
+  Eigen::VectorXd all(c.n());
+  for (int i = 0; i < c.n(); ++i) all[i] = i;
+  const Eigen::VectorXd kept = c.kept(all);
+  return std::vector<int>(kept.data(), kept.data() + kept.size());
+}
+
+void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
+  const int me = petsc::rank(), ranks = petsc::size();
+  const ElasticContactData d = data(mesh.dim, mass);
+  const ConstrainedProblem whole = build_elastic_contact(mesh, d);
+  const StepQP W = step_qp(whole);
+  QPOptions options;
+  options.tol = kTol;
+  const QPResult reference = make_step_solver("pdas", options)->solve(W.qp);
+  ASSERT_GT(reference.active.size(), 0u);
+  ASSERT_LT(reference.active.size(), whole.constrained.size());
+
+  // this rank's cells (a slab across x, so that each rank holds a part of the contact
+  // side and of the clamped one), its share of the QP and where its unknowns sit
+  std::vector<int> cells;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    double x = 0;
+    for (int v = 0; v <= mesh.dim; ++v) x += mesh.vertices[mesh.cells[c][v]].x / (mesh.dim + 1);
+    if (std::min(static_cast<int>(x * ranks), ranks - 1) == me) cells.push_back(c);
+  }
+  const SubMesh sub = sub_mesh(mesh, cells);
+  const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
+  const StepQP R = step_qp(part);
+  const std::vector<int> free_in_whole = unknowns_in_whole(whole, part, sub);
+  std::vector<int> kept_of(W.condensation.n(), -1);
+  const std::vector<int> kept_whole = kept_indices(W.condensation);
+  for (std::size_t i = 0; i < kept_whole.size(); ++i) kept_of[kept_whole[i]] = static_cast<int>(i);
+  std::vector<int> global;
+  for (int i : kept_indices(R.condensation)) global.push_back(kept_of[free_in_whole[i]]);
+
+  auto solver = petsc::make_petsc_subdomain_solver(global, options);
+  const QPResult result = solver->solve(R.qp);
+  const double scale = reference.X.lpNorm<Eigen::Infinity>();
+  const double reaction_scale = reference.reaction.lpNorm<Eigen::Infinity>();
+  double dX = 0, dl = 0;
+  int held = 0, held_reference = 0;
+  for (std::size_t i = 0; i < global.size(); ++i) {
+    dX = std::max(dX, std::abs(result.X[i] - reference.X[global[i]]));
+    dl = std::max(dl, std::abs(result.reaction[i] - reference.reaction[global[i]]));
+    held_reference += std::count(reference.active.begin(), reference.active.end(), global[i]) > 0;
+  }
+  held = static_cast<int>(result.active.size());
+  std::printf("rank %d of %d: %zu of %d unknowns, %d held; |dX| = %.2e of %.2e, |dλ| = %.2e of %.2e, KKT %.2e, "
+              "%d iterations\n",
+              me, ranks, global.size(), W.qp.size(), held, dX, scale, dl, reaction_scale, result.kkt_residual,
+              result.iterations);
+  EXPECT_LE(dX, 1e-8 * scale);
+  EXPECT_LE(dl, 1e-6 * reaction_scale);
+  EXPECT_EQ(held, held_reference);
+  EXPECT_LE(result.kkt_residual, kTol);
+
+  // from the solution: one iteration, the same solution
+  const QPResult again = solver->solve(R.qp, &result);
+  EXPECT_EQ(again.iterations, 1);
+  EXPECT_LE((again.X - result.X).lpNorm<Eigen::Infinity>(), 1e-8 * scale);
+}
+
+TEST(Subdomains, SolveTheWholeStepQPInThePlane) {
+  expect_subdomains_solve_the_whole(unit_square_mesh(12), MassSpec::pair(Element::P1Bubble, Element::P0));
+}
+
+TEST(Subdomains, SolveTheWholeStepQPInSpace) {
+  expect_subdomains_solve_the_whole(unit_cube_mesh(4), MassSpec::pair(Element::P1Bubble, Element::P0));
+}
+
+TEST(Subdomains, SolveTheWholeStepQPWithTheConsistentMass) {
+  expect_subdomains_solve_the_whole(unit_square_mesh(12), MassSpec::parse("consistent", Element::P1));
+}
+
+}  // namespace
+}  // namespace cdyn
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  cdyn::petsc::initialize();
+  return cdyn::petsc::end_process(RUN_ALL_TESTS());
+}
