@@ -23,6 +23,7 @@
 #include "cdyn/problems/subdomain.hpp"
 #include "cdyn/qp/condensation.hpp"
 #include "cdyn/qp/petsc/backend.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
 
 namespace cdyn {
 namespace {
@@ -73,6 +74,18 @@ std::vector<int> kept_indices(const StaticCondensation& c) {
   return std::vector<int>(kept.data(), kept.data() + kept.size());
 }
 
+// The cells dealt in slabs across x: each rank holds a part of the contact side and of
+// the clamped one.
+std::vector<int> slab(const Mesh& mesh, int rank, int ranks) {
+  std::vector<int> cells;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    double x = 0;
+    for (int v = 0; v <= mesh.dim; ++v) x += mesh.vertices[mesh.cells[c][v]].x / (mesh.dim + 1);
+    if (std::min(static_cast<int>(x * ranks), ranks - 1) == rank) cells.push_back(c);
+  }
+  return cells;
+}
+
 void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   const int me = petsc::rank(), ranks = petsc::size();
   const ElasticContactData d = data(mesh.dim, mass);
@@ -84,18 +97,11 @@ void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   ASSERT_GT(reference.active.size(), 0u);
   ASSERT_LT(reference.active.size(), whole.constrained.size());
 
-  // this rank's cells (a slab across x, so that each rank holds a part of the contact
-  // side and of the clamped one), its share of the QP and where its unknowns sit
-  std::vector<int> cells;
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    double x = 0;
-    for (int v = 0; v <= mesh.dim; ++v) x += mesh.vertices[mesh.cells[c][v]].x / (mesh.dim + 1);
-    if (std::min(static_cast<int>(x * ranks), ranks - 1) == me) cells.push_back(c);
-  }
-  const SubMesh sub = sub_mesh(mesh, cells);
+  // this rank's slab of cells, its share of the QP and where its unknowns sit
+  const SubMesh sub = sub_mesh(mesh, slab(mesh, me, ranks));
   const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
   const StepQP R = step_qp(part);
-  const std::vector<int> free_in_whole = unknowns_in_whole(whole, part, sub);
+  const std::vector<int> free_in_whole = unknowns_in_whole(*whole.W, *whole.bc, part, sub);
   std::vector<int> kept_of(W.condensation.n(), -1);
   const std::vector<int> kept_whole = kept_indices(W.condensation);
   for (std::size_t i = 0; i < kept_whole.size(); ++i) kept_of[kept_whole[i]] = static_cast<int>(i);
@@ -129,6 +135,50 @@ void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   EXPECT_LE((again.X - result.X).lpNorm<Eigen::Infinity>(), 1e-8 * scale);
 }
 
+// The time loop on subdomains: every rank steps the scheme on its own cells' problem
+// with the subdomains' solver (the scheme condenses the bubbles of its share and tells
+// the solver which unknowns it keeps), the body pushed onto the plane; after each step
+// its displacement is the whole problem's serial run's (native pdas) on its unknowns,
+// and the energy summed over the ranks is the whole's.  Measured: see the output.
+void expect_time_loops_agree(const Mesh& mesh, const MassSpec& mass, const std::string& scheme) {
+  const int me = petsc::rank(), ranks = petsc::size();
+  const ElasticContactData d = data(mesh.dim, mass);
+  const ConstrainedProblem whole = build_elastic_contact(mesh, d);
+  const SubMesh sub = sub_mesh(mesh, slab(mesh, me, ranks));
+  const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
+  const std::vector<int> labels = unknowns_in_whole(*whole.W, *whole.bc, part, sub);
+
+  QPOptions options;
+  options.tol = kTol;
+  auto serial = make_step_solver("pdas", options);
+  auto shared = petsc::make_petsc_subdomain_solver(labels, options);
+  SchemeParameters parameters;
+  parameters.reconstruct = false;  // (the full-step reconstruction's QP is not split yet)
+  parameters.tol = kTol;
+  const double dt = 0.02;
+  auto W = make_time_scheme(scheme, whole, *serial, dt, parameters);
+  auto R = make_time_scheme(scheme, part, *shared, dt, parameters);
+  State w, r;
+  w.U = Eigen::VectorXd::Zero(whole.n_free());
+  w.V = whole.mass->velocity(Eigen::VectorXd::Constant(whole.n_free(), -0.1));
+  r.U = Eigen::VectorXd::Zero(part.n_free());
+  r.V = part.mass->velocity(Eigen::VectorXd::Constant(part.n_free(), -0.1));  // the same field
+  double dU = 0, dJ = 0;
+  int most_held = 0;
+  for (int step = 0; step < 25; ++step) {
+    most_held = std::max(most_held, W->step(w).active);
+    R->step(r);
+    for (int i = 0; i < part.n_free(); ++i) dU = std::max(dU, std::abs(r.U[i] - w.U[labels[i]]));
+    const double J = petsc::sum_over_ranks(R->energy(r).total()), J_whole = W->energy(w).total();
+    dJ = std::max(dJ, std::abs(J - J_whole) / std::abs(J_whole));
+  }
+  std::printf("rank %d of %d, %s: max |dU| = %.2e of %.2e, |dJ|/|J| = %.2e, %d held at most\n", me, ranks,
+              scheme.c_str(), dU, w.U.lpNorm<Eigen::Infinity>(), dJ, most_held);
+  EXPECT_GT(most_held, 0);
+  EXPECT_LE(dU, 1e-8 * w.U.lpNorm<Eigen::Infinity>());
+  EXPECT_LE(dJ, 1e-9);
+}
+
 TEST(Subdomains, SolveTheWholeStepQPInThePlane) {
   expect_subdomains_solve_the_whole(unit_square_mesh(12), MassSpec::pair(Element::P1Bubble, Element::P0));
 }
@@ -139,6 +189,19 @@ TEST(Subdomains, SolveTheWholeStepQPInSpace) {
 
 TEST(Subdomains, SolveTheWholeStepQPWithTheConsistentMass) {
   expect_subdomains_solve_the_whole(unit_square_mesh(12), MassSpec::parse("consistent", Element::P1));
+}
+
+TEST(Subdomains, TimeLoopsAgreeWithTheWholeProblemsInThePlane) {
+  for (const std::string scheme : {"backward_euler", "midpoint"})
+    expect_time_loops_agree(unit_square_mesh(12), MassSpec::pair(Element::P1Bubble, Element::P0), scheme);
+}
+
+TEST(Subdomains, TimeLoopsAgreeWithTheWholeProblemsInSpace) {
+  expect_time_loops_agree(unit_cube_mesh(4), MassSpec::pair(Element::P1Bubble, Element::P0), "midpoint");
+}
+
+TEST(Subdomains, TimeLoopsAgreeWithTheConsistentMass) {
+  expect_time_loops_agree(unit_square_mesh(12), MassSpec::parse("consistent", Element::P1), "backward_euler");
 }
 
 }  // namespace

@@ -67,7 +67,7 @@ void expect_sums_to_whole(const Mesh& mesh) {
     const SubMesh sub = sub_mesh(mesh, cells);
     touching += !sub.mesh.parts_elsewhere.empty();
     const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
-    const std::vector<int> P = unknowns_in_whole(whole, part, sub);
+    const std::vector<int> P = unknowns_in_whole(*whole.W, *whole.bc, part, sub);
     A += place(part.A, P, n);
     M += place(*part.mass->matrix(), P, n);
     const Eigen::VectorXd Lr = part.load(0.0);

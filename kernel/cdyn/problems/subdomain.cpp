@@ -7,9 +7,8 @@
 
 namespace cdyn {
 
-std::vector<int> unknowns_in_whole(const ConstrainedProblem& whole, const ConstrainedProblem& part,
+std::vector<int> unknowns_in_whole(const FESpace& W, const DirichletLift& bc, const ConstrainedProblem& part,
                                    const SubMesh& sub) {
-  const FESpace& W = *whole.W;
   if (W.element() != Element::P1 && W.element() != Element::P1Bubble)
     throw InputError("subdomain: only P1 and P1+ displacements are split into subdomains (not " +
                      to_string(W.element()) + ")");
@@ -19,7 +18,7 @@ std::vector<int> unknowns_in_whole(const ConstrainedProblem& whole, const Constr
   for (int i : part.bc->free_dofs()) {
     const int s = i / k, component = i % k;
     const int whole_s = s < nv ? sub.vertex[s] : nv_whole + sub.cell[s - nv];  // a vertex, or a cell's bubble
-    const int g = whole.bc->free_index(W.dof(whole_s, component));
+    const int g = bc.free_index(W.dof(whole_s, component));
     if (g < 0) throw InputError("subdomain: a free unknown of the subdomain is fixed in the whole problem");
     P.push_back(g);
   }

@@ -15,9 +15,11 @@
 namespace cdyn {
 
 // The whole problem's free unknown of each of `part`'s (built on sub.mesh from the
-// whole's data).  InputError for a space other than P1 and P1+, or an unknown free in the
-// part and fixed in the whole (the sub-mesh was not made from the whole's mesh).
-std::vector<int> unknowns_in_whole(const ConstrainedProblem& whole, const ConstrainedProblem& part,
+// whole's data), the whole problem given by its space W on the whole mesh and its
+// Dirichlet dofs bc (nothing assembled).  InputError for a space other than P1 and P1+,
+// or an unknown free in the part and fixed in the whole (the sub-mesh was not made from
+// the whole's mesh).
+std::vector<int> unknowns_in_whole(const FESpace& W, const DirichletLift& bc, const ConstrainedProblem& part,
                                    const SubMesh& sub);
 
 }  // namespace cdyn

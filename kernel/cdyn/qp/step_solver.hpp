@@ -38,6 +38,14 @@ class StepSolver {
   // tolerance (an energy correction stalled on the solves' errors): a solver with a
   // factorization solves by it (pdas: its factor brought to the active set, not CG).
   virtual void next_in_same_step(bool /*to_round_off*/) {}
+  // A solver of one subdomain's share of the step QP (the ranks' shares summed:
+  // qp/petsc/backend.hpp) sees a matrix whose pattern is not the whole S's: the
+  // scheme's condensation then takes the cells' bubbles only (qp/condensation.hpp).
+  virtual bool solves_a_share() const { return false; }
+  // The QP's unknowns among the problem's free unknowns (the kept ones of the scheme's
+  // condensation, in order; all of them without), told by the scheme whenever it builds
+  // its QP: a share's solver places them in the whole problem through them.
+  virtual void set_unknowns(const std::vector<int>& /*free_unknowns*/) {}
 };
 
 // name: one of step_solver_names(); anything else is an InputError.

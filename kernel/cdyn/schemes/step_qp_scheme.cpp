@@ -41,6 +41,7 @@ void StepQPScheme::build(double a, double m) {
     qp_.S = SparseMatrix();
     qp_.saddle = p_.mass->saddle(SparseMatrix(a_ * p_.A), k);
     map_friction();
+    tell_unknowns();
     return;
   }
   qp_.S = a_ * p_.A + k * *M_;
@@ -51,7 +52,7 @@ void StepQPScheme::build(double a, double m) {
     Eigen::VectorXd keep = p_.lower;
     for (const FrictionNode& node : p_.friction)
       for (int t : node.tangential) keep[t] = 0.0;
-    StaticCondensation c(qp_.S, keep, p_.upper, bubble_unknowns(p_));
+    StaticCondensation c(qp_.S, keep, p_.upper, bubble_unknowns(p_), !solver_.solves_a_share());
     if (c.n_condensed() > 0) {
       qp_.S = c.S_c();  // (c keeps the full S, for set_bounds)
       qp_.lower = c.kept(p_.lower);
@@ -60,6 +61,18 @@ void StepQPScheme::build(double a, double m) {
     }
   }
   map_friction();
+  tell_unknowns();
+}
+
+void StepQPScheme::tell_unknowns() {
+  std::vector<int> free_unknowns(p_.n_free());
+  for (int i = 0; i < p_.n_free(); ++i) free_unknowns[i] = i;
+  if (condensation_) {
+    free_unknowns.clear();
+    for (int i = 0; i < p_.n_free(); ++i)
+      if (!condensation_->condenses(i)) free_unknowns.push_back(i);
+  }
+  solver_.set_unknowns(free_unknowns);
 }
 
 void StepQPScheme::map_friction() {
@@ -140,6 +153,7 @@ void StepQPScheme::end_condensation() {
   D_.resize(0);
   has_last_ = false;
   map_friction();
+  tell_unknowns();
 }
 
 SchemeMemory StepQPScheme::memory() const {

@@ -118,6 +118,7 @@ class StepQPScheme : public TimeScheme {
   void build(double a, double m);
   void end_condensation();  // the full QP from now on
   void map_friction();      // the friction nodes' unknowns in the step QP's numbering
+  void tell_unknowns();     // the QP's unknowns to the solver (StepSolver::set_unknowns)
   void solve_with_friction(State& s, StepStats& stats);  // fills friction_last_
   Eigen::VectorXd report_last(const Eigen::VectorXd& r, State& s, StepStats& stats) const;
 

@@ -14,6 +14,7 @@ namespace {
 
 bool started = false;
 bool handler_pushed = false;
+bool everyone_runs = false;  // every rank runs the program (no rank serves: subdomains)
 
 }  // namespace
 
@@ -66,11 +67,18 @@ int serve() {
 
 void finish() {
   if (!started) return;
-  if (rank() == 0 && size() > 1) send(Command::quit);
+  if (rank() == 0 && size() > 1 && !everyone_runs) send(Command::quit);
   the_distributed_qp().clear();
   if (handler_pushed) PetscPopErrorHandler();  // (freed, as everything else, before the finalization)
   PetscFinalize();
   started = false;
+}
+
+void every_rank_runs() { everyone_runs = true; }
+
+double sum_over_ranks(double x) {
+  if (started) MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return x;
 }
 
 }  // namespace cdyn::petsc::session

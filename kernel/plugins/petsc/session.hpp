@@ -23,5 +23,10 @@ int size();  // 1 before start()
 int serve();
 // Rank 0 tells the others to quit; then PETSc and MPI are finalized (if started).
 void finish();
+// The sum of x over the ranks, on every rank (collective; x itself before start()).
+double sum_over_ranks(double x);
+// Every rank runs the program, none serves (the subdomains' solves,
+// subdomain_step_solver.hpp): finish() then sends no quit.
+void every_rank_runs();
 
 }  // namespace cdyn::petsc::session

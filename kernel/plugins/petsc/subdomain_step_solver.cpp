@@ -48,7 +48,7 @@ class SubdomainStepSolver : public StepSolver {
  public:
   SubdomainStepSolver(const std::vector<int>& global, const std::string& name, const SolverChoice& choice,
                       const QPOptions& options)
-      : global_(global), options_(options), name_(name), choice_(choice) {
+      : labels_(global), global_(global), options_(options), name_(name), choice_(choice) {
     if (choice.algorithm != Algorithm::pdas)  // (TAO and SNESVI: not yet tried on summed shares)
       throw InputError("solver", "the subdomains' step QP is solved by the petsc pdas only (not " + name + ")");
     number_unknowns();
@@ -57,6 +57,18 @@ class SubdomainStepSolver : public StepSolver {
     if (diagonal_) VecDestroy(&diagonal_);
   }
   std::string name() const override { return "petsc " + name_ + " (subdomains)"; }
+  bool solves_a_share() const override { return true; }
+
+  // The QPs' unknowns are now these of the labelled ones (a scheme's condensation keeps
+  // some): numbered again, the matrix assembled again at the next solve.  Collective.
+  void set_unknowns(const std::vector<int>& free_unknowns) override {
+    global_.clear();
+    for (int i : free_unknowns) global_.push_back(labels_.at(i));
+    q_.clear();
+    if (diagonal_) VecDestroy(&diagonal_);
+    diagonal_ = nullptr;
+    number_unknowns();
+  }
 
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
     const auto start = std::chrono::steady_clock::now();
@@ -96,7 +108,8 @@ class SubdomainStepSolver : public StepSolver {
   }
 
  private:
-  // Owners (the lowest rank holding each unknown) and PETSc's numbering.
+  // Owners (the lowest rank holding each unknown) and PETSc's numbering, in the labels'
+  // order (labels no rank holds, as a whole problem's condensed bubbles, are skipped).
   void number_unknowns() {
     int me = 0, p = 1;
     MPI_Comm_rank(world(), &me), MPI_Comm_size(world(), &p);
@@ -106,15 +119,14 @@ class SubdomainStepSolver : public StepSolver {
     for (int g : global_) owner[g] = me;
     MPI_Allreduce(MPI_IN_PLACE, owner.data(), n, MPI_INT, MPI_MIN, world());
     std::vector<PetscInt> first(p + 1, 0), petsc(n, -1);
-    for (int g = 0; g < n; ++g) {
-      if (owner[g] == INT_MAX) throw InputError(name() + ": unknown " + std::to_string(g) + " is in no subdomain");
-      ++first[owner[g] + 1];
-    }
+    for (int g = 0; g < n; ++g)
+      if (owner[g] != INT_MAX) ++first[owner[g] + 1];
     for (int k = 0; k < p; ++k) first[k + 1] += first[k];
     std::vector<PetscInt> next(first.begin(), first.end() - 1);
-    for (int g = 0; g < n; ++g) petsc[g] = next[owner[g]]++;
-    n_ = n;
-    q_.n = n;
+    for (int g = 0; g < n; ++g)
+      if (owner[g] != INT_MAX) petsc[g] = next[owner[g]]++;
+    n_ = static_cast<int>(first[p]);
+    q_.n = n_;
     q_.first = first[me], q_.last = first[me + 1];
     petsc_of_.resize(global_.size());
     for (std::size_t i = 0; i < global_.size(); ++i) petsc_of_[i] = petsc[global_[i]];
@@ -185,8 +197,9 @@ class SubdomainStepSolver : public StepSolver {
     return scale > 0 ? f / scale : f;
   }
 
-  std::vector<int> global_;
-  std::vector<PetscInt> petsc_of_;  // PETSc's index of each local unknown
+  std::vector<int> labels_;         // the whole problem's index of each of the subdomain's unknowns
+  std::vector<int> global_;         // ... of each unknown of its QPs
+  std::vector<PetscInt> petsc_of_;  // PETSc's index of each unknown of its QPs
   int n_ = 0;
   QPOptions options_;
   std::string name_;
@@ -202,6 +215,7 @@ StepSolver* new_subdomain_step_solver(const std::vector<int>& global, const std:
                                       const QPOptions& options, const std::string& preconditioner) {
   const SolverChoice choice = choose_solver(name, options, preconditioner);
   session::start();
+  session::every_rank_runs();
   return new SubdomainStepSolver(global, name, choice, options);
 }
 

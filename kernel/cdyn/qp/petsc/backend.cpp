@@ -98,6 +98,8 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
   return std::unique_ptr<StepSolver>(plugin().make_solver(name, options, preconditioner));
 }
 
+double sum_over_ranks(double x) { return opened ? opened->sum_over_ranks(x) : x; }
+
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
                                                         const std::string& preconditioner) {
   return std::unique_ptr<StepSolver>(plugin().make_subdomain_solver(global, "pdas", options, preconditioner));

@@ -57,7 +57,14 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
 // (problems/subdomain.hpp): the QP solved is Σ_r P_rᵀ S_r P_r, Σ_r P_rᵀ r_r; each rank
 // gets the solution and the reaction on its own unknowns.  pdas only, explicit S
 // (kernel/plugins/petsc/subdomain_step_solver.hpp).  Collective from construction on.
+// `global` may leave gaps (labels no rank holds).  Given to a scheme, the solver learns
+// which of these unknowns its QPs keep (StepSolver::set_unknowns) and condenses the
+// bubbles only (StepSolver::solves_a_share).
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
                                                         const std::string& preconditioner = "");
+
+// The sum of x over the ranks, on every rank: collective in a run whose ranks all run
+// the program (the subdomains'); x itself without the back end opened.
+double sum_over_ranks(double x);
 
 }  // namespace cdyn::petsc

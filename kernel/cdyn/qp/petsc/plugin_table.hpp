@@ -28,6 +28,7 @@ struct PluginTable {
   // a new StepSolver of one subdomain's share, every rank solving at once (the caller owns it)
   StepSolver* (*make_subdomain_solver)(const std::vector<int>& global, const std::string& name,
                                        const QPOptions& options, const std::string& preconditioner);
+  double (*sum_over_ranks)(double);  // collective
 };
 
 constexpr int kPluginVersion = 2;
