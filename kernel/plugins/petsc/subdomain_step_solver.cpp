@@ -25,24 +25,8 @@ double global_max(double local) {
   return local;
 }
 
-// v[i] at the unknowns `at` (PETSc indices) of a distributed vector, as a local vector.
-Eigen::VectorXd values_at(Vec v, const std::vector<PetscInt>& at) {
-  const PetscInt n = static_cast<PetscInt>(at.size());
-  Owned<IS, ISDestroy> from;
-  Owned<Vec, VecDestroy> local;
-  Owned<VecScatter, VecScatterDestroy> scatter;
-  check(ISCreateGeneral(PETSC_COMM_SELF, n, at.data(), PETSC_COPY_VALUES, from.out()), "ISCreateGeneral");
-  check(VecCreateSeq(PETSC_COMM_SELF, n, local.out()), "VecCreateSeq");
-  check(VecScatterCreate(v, from, local, nullptr, scatter.out()), "VecScatterCreate");
-  check(VecScatterBegin(scatter, v, local, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(scatter, v, local, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  Eigen::VectorXd out(n);
-  const PetscScalar* a = nullptr;
-  VecGetArrayRead(local, &a);
-  std::copy(a, a + n, out.data());
-  VecRestoreArrayRead(local, &a);
-  return out;
-}
+// True on every rank when `changed` is on any.
+bool on_any_rank(bool changed) { return global_max(changed ? 1.0 : 0.0) > 0; }
 
 class SubdomainStepSolver : public StepSolver {
  public:
@@ -53,9 +37,7 @@ class SubdomainStepSolver : public StepSolver {
       throw InputError("solver", "the subdomains' step QP is solved by the petsc pdas only (not " + name + ")");
     number_unknowns();
   }
-  ~SubdomainStepSolver() override {
-    if (diagonal_) VecDestroy(&diagonal_);
-  }
+  ~SubdomainStepSolver() override { forget_layout(); }
   std::string name() const override { return "petsc " + name_ + " (subdomains)"; }
   bool solves_a_share() const override { return true; }
 
@@ -64,9 +46,7 @@ class SubdomainStepSolver : public StepSolver {
   void set_unknowns(const std::vector<int>& free_unknowns) override {
     global_.clear();
     for (int i : free_unknowns) global_.push_back(labels_.at(i));
-    q_.clear();
-    if (diagonal_) VecDestroy(&diagonal_);
-    diagonal_ = nullptr;
+    forget_layout();
     number_unknowns();
   }
 
@@ -77,8 +57,7 @@ class SubdomainStepSolver : public StepSolver {
       throw InputError(name() + ": the QP has " + std::to_string(qp.size()) + " unknowns, the subdomain " +
                        std::to_string(global_.size()));
     // S assembled again when any rank's share changed
-    double changed = checked_.check(qp, /*positive_definite=*/false, name()) ? 1.0 : 0.0;
-    if (global_max(changed) > 0 || !q_.S) assemble_matrix(qp.S);
+    if (on_any_rank(checked_.check(qp, /*positive_definite=*/false, name()) || !q_.S)) assemble_matrix(qp.S);
     assemble_vectors(qp, warm_start);
 
     SolveSettings settings;
@@ -89,6 +68,7 @@ class SubdomainStepSolver : public StepSolver {
     settings.tol = options_.tol;
     settings.max_iterations = options_.max_iterations;
     QPResult result;
+    last_X_.resize(0);  // (q_.X is the iterate from here on)
     try {
       result.iterations = solve_collectively(q_, settings);
     } catch (const NumericalError& e) {  // (the same on every rank: reasons and tests are global)
@@ -96,9 +76,10 @@ class SubdomainStepSolver : public StepSolver {
     }
     check(MatMult(q_.S, q_.X, q_.reaction), "MatMult");  // λ = S X − r
     check(VecAXPY(q_.reaction, -1.0, q_.r), "VecAXPY");
-    result.X = values_at(q_.X, petsc_of_);
-    result.reaction = values_at(q_.reaction, petsc_of_);
-    const Eigen::VectorXd D = values_at(diagonal_, petsc_of_);
+    result.X = values_at(q_.X);
+    result.reaction = values_at(q_.reaction);
+    last_X_ = result.X, last_reaction_ = result.reaction;
+    const Eigen::VectorXd D = values_at(diagonal_);
     result.kkt_residual = kkt_over_ranks(qp, result, D);
     result.active = active_set(qp, result.X, result.reaction, D);
     result.converged = result.kkt_residual <= options_.tol;
@@ -156,25 +137,65 @@ class SubdomainStepSolver : public StepSolver {
     for (Vec* v : {&q_.r, &q_.lower, &q_.upper, &q_.X, &q_.reaction, &diagonal_})
       if (!*v) check(MatCreateVecs(q_.S, v, nullptr), "MatCreateVecs");
     check(MatGetDiagonal(q_.S, diagonal_), "MatGetDiagonal");
+    if (!to_local_) {  // this rank's unknowns, gathered from the owners' rows
+      Owned<IS, ISDestroy> from;
+      check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(petsc_of_.size()), petsc_of_.data(),
+                            PETSC_COPY_VALUES, from.out()),
+            "ISCreateGeneral");
+      check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(petsc_of_.size()), &local_), "VecCreateSeq");
+      check(VecScatterCreate(q_.X, from, local_, nullptr, &to_local_), "VecScatterCreate");
+    }
+    last_lower_.resize(0), last_X_.resize(0);  // the vectors are sent again
+  }
+
+  // v's entries at this rank's unknowns (v in S's layout).
+  Eigen::VectorXd values_at(Vec v) const {
+    check(VecScatterBegin(to_local_, v, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(to_local_, v, local_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* a = nullptr;
+    VecGetArrayRead(local_, &a);
+    Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(a, static_cast<Eigen::Index>(petsc_of_.size()));
+    VecRestoreArrayRead(local_, &a);
+    return out;
+  }
+
+  // The distributed problem, the scatter and what was sent, dropped (a new numbering).
+  void forget_layout() {
+    q_.clear();
+    if (diagonal_) VecDestroy(&diagonal_);
+    if (to_local_) VecScatterDestroy(&to_local_);
+    if (local_) VecDestroy(&local_);
+    diagonal_ = nullptr, to_local_ = nullptr, local_ = nullptr;
+    last_lower_.resize(0), last_X_.resize(0);
   }
 
   // r summed; the bounds, the warm start and its reaction written by every rank holding
-  // the unknown (the same values).
+  // the unknown (the same values) — the bounds only when they changed, the warm start
+  // only when it is not the last solution, which the distributed vectors still hold.
   void assemble_vectors(const BoundQP& qp, const QPResult* warm) {
     const PetscInt n = static_cast<PetscInt>(petsc_of_.size());
+    std::vector<Vec> sent = {q_.r};
     check(VecSet(q_.r, 0.0), "VecSet");
     check(VecSetValues(q_.r, n, petsc_of_.data(), qp.r.data(), ADD_VALUES), "VecSetValues");
     auto insert = [&](Vec v, const Eigen::VectorXd& x) {
       check(VecSetValues(v, n, petsc_of_.data(), x.data(), INSERT_VALUES), "VecSetValues");
+      sent.push_back(v);
     };
-    insert(q_.lower, qp.lower), insert(q_.upper, qp.upper);
-    const bool use_warm = warm && warm->X.size() == qp.size() && warm->reaction.size() == qp.size();
-    if (use_warm) {
-      insert(q_.X, warm->X), insert(q_.reaction, warm->reaction);
-    } else {
-      check(VecSet(q_.X, 0.0), "VecSet"), check(VecSet(q_.reaction, 0.0), "VecSet");
+    if (on_any_rank(last_lower_.size() != qp.size() || last_lower_ != qp.lower || last_upper_ != qp.upper)) {
+      insert(q_.lower, qp.lower), insert(q_.upper, qp.upper);
+      last_lower_ = qp.lower, last_upper_ = qp.upper;
     }
-    for (Vec v : {q_.r, q_.lower, q_.upper, q_.X, q_.reaction}) {
+    const bool use_warm = warm && warm->X.size() == qp.size() && warm->reaction.size() == qp.size();
+    const bool held = use_warm && last_X_.size() == qp.size() && warm->X == last_X_ &&
+                      warm->reaction == last_reaction_;
+    if (on_any_rank(!held)) {
+      if (use_warm) {
+        insert(q_.X, warm->X), insert(q_.reaction, warm->reaction);
+      } else {
+        check(VecSet(q_.X, 0.0), "VecSet"), check(VecSet(q_.reaction, 0.0), "VecSet");
+      }
+    }
+    for (Vec v : sent) {
       check(VecAssemblyBegin(v), "VecAssemblyBegin");
       check(VecAssemblyEnd(v), "VecAssemblyEnd");
     }
@@ -183,7 +204,7 @@ class SubdomainStepSolver : public StepSolver {
   // max_i |natural residual_i| / max(‖X‖∞, ‖D⁻¹r‖∞) over the whole problem (qp/kkt.hpp):
   // each rank measures the rows it owns, with the summed r.
   double kkt_over_ranks(const BoundQP& qp, const QPResult& result, const Eigen::VectorXd& D) const {
-    const Eigen::VectorXd r = values_at(q_.r, petsc_of_);
+    const Eigen::VectorXd r = values_at(q_.r);
     BoundQP whole_rows;  // this rank's unknowns with the summed r
     whole_rows.r = r, whole_rows.lower = qp.lower, whole_rows.upper = qp.upper;
     const Eigen::VectorXd F = natural_residual(whole_rows, result.X, result.reaction, D);
@@ -207,6 +228,9 @@ class SubdomainStepSolver : public StepSolver {
   CheckedMatrices checked_;
   DistributedQP q_;
   Vec diagonal_ = nullptr;  // diag S, for the KKT measure and the active set
+  VecScatter to_local_ = nullptr;  // S's layout → this rank's unknowns
+  Vec local_ = nullptr;
+  Eigen::VectorXd last_lower_, last_upper_, last_X_, last_reaction_;  // as the distributed vectors hold them
 };
 
 }  // namespace
