@@ -53,17 +53,6 @@ ElasticContactData cube_data(double h) {
   return d;
 }
 
-// The cells whose centroid's x falls in rank's slab of [0, 1].
-std::vector<int> slab(const Mesh& mesh, int rank, int ranks) {
-  std::vector<int> cells;
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    double x = 0;
-    for (int v = 0; v <= mesh.dim; ++v) x += mesh.vertices[mesh.cells[c][v]].x / (mesh.dim + 1);
-    if (std::min(static_cast<int>(x * ranks), ranks - 1) == rank) cells.push_back(c);
-  }
-  return cells;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,7 +81,7 @@ int main(int argc, char** argv) {
   parameters.tol = options.tol;
 
   SubMesh sub;
-  if (!native) sub = sub_mesh(mesh, slab(mesh, me, ranks));
+  if (!native) sub = sub_mesh(mesh, slab_cells(mesh, me, ranks));
   const ConstrainedProblem p = build_elastic_contact(native ? mesh : sub.mesh, d);
   std::unique_ptr<StepSolver> solver;
   if (native) {

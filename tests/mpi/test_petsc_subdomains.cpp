@@ -74,18 +74,6 @@ std::vector<int> kept_indices(const StaticCondensation& c) {
   return std::vector<int>(kept.data(), kept.data() + kept.size());
 }
 
-// The cells dealt in slabs across x: each rank holds a part of the contact side and of
-// the clamped one.
-std::vector<int> slab(const Mesh& mesh, int rank, int ranks) {
-  std::vector<int> cells;
-  for (int c = 0; c < mesh.n_cells(); ++c) {
-    double x = 0;
-    for (int v = 0; v <= mesh.dim; ++v) x += mesh.vertices[mesh.cells[c][v]].x / (mesh.dim + 1);
-    if (std::min(static_cast<int>(x * ranks), ranks - 1) == rank) cells.push_back(c);
-  }
-  return cells;
-}
-
 void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   const int me = petsc::rank(), ranks = petsc::size();
   const ElasticContactData d = data(mesh.dim, mass);
@@ -98,7 +86,7 @@ void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   ASSERT_LT(reference.active.size(), whole.constrained.size());
 
   // this rank's slab of cells, its share of the QP and where its unknowns sit
-  const SubMesh sub = sub_mesh(mesh, slab(mesh, me, ranks));
+  const SubMesh sub = sub_mesh(mesh, slab_cells(mesh, me, ranks));
   const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
   const StepQP R = step_qp(part);
   const std::vector<int> free_in_whole = unknowns_in_whole(*whole.W, *whole.bc, part, sub);
@@ -144,7 +132,7 @@ void expect_time_loops_agree(const Mesh& mesh, const MassSpec& mass, const std::
   const int me = petsc::rank(), ranks = petsc::size();
   const ElasticContactData d = data(mesh.dim, mass);
   const ConstrainedProblem whole = build_elastic_contact(mesh, d);
-  const SubMesh sub = sub_mesh(mesh, slab(mesh, me, ranks));
+  const SubMesh sub = sub_mesh(mesh, slab_cells(mesh, me, ranks));
   const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
   const std::vector<int> labels = unknowns_in_whole(*whole.W, *whole.bc, part, sub);
 

@@ -121,3 +121,14 @@ TEST(SubMesh, KeepsItsCellsFacetsAndTheMeshsVertexOrder) {
   EXPECT_THROW(sub_mesh(mesh, {0, 0}), InputError);
   EXPECT_THROW(sub_mesh(mesh, {8}), InputError);
 }
+
+TEST(SubMesh, SlabsPartitionTheCells) {
+  const Mesh mesh = unit_cube_mesh(3);
+  std::vector<int> seen(mesh.n_cells(), 0);
+  for (int part = 0; part < 3; ++part) {
+    const std::vector<int> cells = slab_cells(mesh, part, 3);
+    EXPECT_EQ(static_cast<int>(cells.size()), mesh.n_cells() / 3);  // one layer of cubes each
+    for (int c : cells) ++seen[c];
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), mesh.n_cells());
+}

@@ -2,6 +2,7 @@
 #include "cdyn/mesh/sub_mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <set>
 #include <string>
@@ -80,6 +81,19 @@ SubMesh sub_mesh(const Mesh& mesh, const std::vector<int>& cells) {
   std::sort(m.parts_elsewhere.begin(), m.parts_elsewhere.end());
   m.parts_elsewhere.erase(std::unique(m.parts_elsewhere.begin(), m.parts_elsewhere.end()), m.parts_elsewhere.end());
   return sub;
+}
+
+std::vector<int> slab_cells(const Mesh& mesh, int part, int parts) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const Point& v : mesh.vertices) lo = std::min(lo, v.x), hi = std::max(hi, v.x);
+  std::vector<int> cells;
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    double x = 0;
+    for (int k = 0; k <= mesh.dim; ++k) x += mesh.vertices[mesh.cells[c][k]].x / (mesh.dim + 1);
+    const int slab = hi > lo ? static_cast<int>((x - lo) / (hi - lo) * parts) : 0;
+    if (std::min(slab, parts - 1) == part) cells.push_back(c);
+  }
+  return cells;
 }
 
 }  // namespace cdyn

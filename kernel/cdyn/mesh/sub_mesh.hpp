@@ -35,4 +35,9 @@ struct SubMesh {
 // out of range or repeated.
 SubMesh sub_mesh(const Mesh& mesh, const std::vector<int>& cells);
 
+// The cells whose centroid lies in slab `part` of `parts` equal slabs across the mesh's
+// x-range: a partition of the cells, the tests' and the benchmarks' (a graph
+// partitioner cuts fewer couplings on a general mesh).
+std::vector<int> slab_cells(const Mesh& mesh, int part, int parts);
+
 }  // namespace cdyn
