@@ -2,8 +2,8 @@
 # bench.sh — runs the benchmark set of docs/performance.md, 19 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
 # BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers,
-# bench_condition12, bench_bandwidth and bench_threads built (cmake --build BUILD --target cdyn_app
-# bench_contact_step bench_step_solvers bench_condition12 bench_bandwidth bench_threads).
+# bench_condition12, bench_bandwidth, bench_threads and bench_subdomains built (cmake --build BUILD --target
+# cdyn_app bench_contact_step bench_step_solvers bench_condition12 bench_bandwidth bench_threads bench_subdomains).
 set -e
 BUILD=${1:-build}
 OUT=${2:-out/bench}
@@ -60,6 +60,14 @@ $PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --s
 if [ -f "$BUILD/kernel/libcdyn_petsc.so" ]; then
   section "(l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 2.5 minutes"
   $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 16,32 --pcs jacobi --native cg --log
+  section "(m) subdomains: the cube's time loop on each rank's cells, 1 and 2 ranks, against the whole problem (docs/distributed.md), about 1 minute"
+  # (OpenMPI starts as root only with the two variables, as bench_mpi.py sets them)
+  for n in 16 32; do
+    "$BUILD/bench/bench_subdomains" $n 16 native
+    for ranks in 1 2; do
+      OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec -n $ranks "$BUILD/bench/bench_subdomains" $n 16
+    done
+  done
 fi
 echo "== load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "== total: $(( $(date +%s) - START )) s"
