@@ -27,14 +27,16 @@ std::optional<MasslessModes> massless_modes(const SparseMatrix& B_in, const std:
     modes.pinned.push_back(j);
   }
 
-  // Private columns: one unbounded unknown per row that no other row sees.
+  // Private columns: one unbounded unknown per row that no other row sees — the last of
+  // them, which for P1+ is the cell's bubble (numbered after the vertices), also where a
+  // vertex lies in that one cell only: a corner of the mesh, or of a subdomain's
+  // sub-mesh (mesh/sub_mesh.hpp), whose basis must be the restriction of the whole's.
   std::vector<int> private_of(rows, -1);
   std::vector<char> is_private(n, 0);
   for (int j : rest)
-    if (nnz(j) == 1 && !bounded[j]) {
-      const int r = B.innerIndexPtr()[outer[j]];
-      if (private_of[r] < 0) private_of[r] = j, is_private[j] = 1;
-    }
+    if (nnz(j) == 1 && !bounded[j]) private_of[B.innerIndexPtr()[outer[j]]] = j;
+  for (int j : private_of)
+    if (j >= 0) is_private[j] = 1;
   bool every_row = rows > 0;
   for (int r = 0; r < rows && every_row; ++r) every_row = private_of[r] >= 0;
 

@@ -17,7 +17,8 @@
 //  - zero columns: the unknown is massless by itself (the redistributed mass: its
 //    contact dofs, Khenous–Laborde–Renard) — Z's column is e_j;
 //  - private columns: each row r of B has an unbounded unknown p(r) that appears in no
-//    other row (the bubble of P1+/P0: B_K,b = ∫_K b), so B W = B U fixes W_p(r) from the
+//    other row (the bubble of P1+/P0: B_K,b = ∫_K b; of several, the last: the bubble,
+//    not a vertex of that one cell only), so B W = B U fixes W_p(r) from the
 //    other unknowns of row r; every other unknown j is pinned with
 //        Z e_k = e_j − Σ_r (B_rj / B_r,p(r)) e_p(r).
 // What remains after removing the zero columns must then have no kernel left (full

@@ -46,6 +46,11 @@ class StepSolver {
   // condensation, in order; all of them without), told by the scheme whenever it builds
   // its QP: a share's solver places them in the whole problem through them.
   virtual void set_unknowns(const std::vector<int>& /*free_unknowns*/) {}
+  // For another QP a scheme solves on some of the problem's free unknowns (the full-step
+  // reconstruction of eq. (14)), with these options: a share's solver makes one of its
+  // kind (the ranks solve that QP together too; set_unknowns then names them); any
+  // other returns nothing, and the scheme makes its own.
+  virtual std::unique_ptr<StepSolver> make_companion(const QPOptions& /*options*/) const { return nullptr; }
 };
 
 // name: one of step_solver_names(); anything else is an InputError.

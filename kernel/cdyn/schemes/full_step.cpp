@@ -27,7 +27,7 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
     : FullStepReconstruction(p, tol, false) {}
 
 FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers,
-                                               Solves solves)
+                                               Solves solves, const StepSolver* step)
     : p_(p), tol_(tol) {
   QPOptions options;
   options.tol = tol;
@@ -70,6 +70,13 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
     options.pdas_cg_only = solves == Solves::CgOnly;
     if (solves == Solves::Direct) options.pdas_cg_iterations = 0;
     solver_ = make_step_solver("pdas", options);
+  }
+  // A share of the step QP (each rank its cells): ZᵀAZ and Zᵀ(L − AU) are sums over cells
+  // too (Z's column of a vertex moves the bubbles of its cells only), and the ranks solve
+  // their sum together
+  if (std::unique_ptr<StepSolver> companion = step ? step->make_companion(options) : nullptr) {
+    solver_ = std::move(companion);
+    solver_->set_unknowns(modes_.pinned);
   }
 }
 

@@ -66,7 +66,10 @@ class FullStepReconstruction {
   enum class Solves { Mixed, CgOnly, Direct };
   // `multipliers`: use the method of multipliers even where a local basis exists (to
   // compare the two).
-  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers, Solves solves = Solves::Mixed);
+  // step: the scheme's step solver, when it must make this QP's solver too (a share's:
+  // StepSolver::make_companion; the QP's unknowns, d, are the pinned ones); else nullptr.
+  FullStepReconstruction(const ConstrainedProblem& p, double tol, bool multipliers, Solves solves = Solves::Mixed,
+                         const StepSolver* step = nullptr);
 
   Method method() const { return method_; }
   bool available() const { return method_ != Method::None; }

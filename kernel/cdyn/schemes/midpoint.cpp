@@ -47,7 +47,8 @@ class Midpoint final : public StepQPScheme {
         at_end_(constraint_at_end) {
     full_step_.emplace(p, parameters.tol, false,
                        parameters.reconstruct_by_cg ? FullStepReconstruction::Solves::CgOnly
-                                                    : FullStepReconstruction::Solves::Mixed);
+                                                    : FullStepReconstruction::Solves::Mixed,
+                       &solver);
     if (!full_step_->available() || (full_step_->needed() && !parameters.reconstruct)) full_step_.reset();
     // Friction: eq. (14) has no friction term, so a reconstructed massless part would
     // slide freely; only a mass with no massless mode (Ker M = {0}: nothing to

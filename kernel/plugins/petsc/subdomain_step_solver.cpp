@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <memory>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/qp/checks.hpp"
@@ -40,6 +41,10 @@ class SubdomainStepSolver : public StepSolver {
   ~SubdomainStepSolver() override { forget_layout(); }
   std::string name() const override { return "petsc " + name_ + " (subdomains)"; }
   bool solves_a_share() const override { return true; }
+  // The same labels, another QP (collective: every rank makes it at once).
+  std::unique_ptr<StepSolver> make_companion(const QPOptions& options) const override {
+    return std::make_unique<SubdomainStepSolver>(labels_, name_, choice_, options);
+  }
 
   // The QPs' unknowns are now these of the labelled ones (a scheme's condensation keeps
   // some): numbered again, the matrix assembled again at the next solve.  Collective.
