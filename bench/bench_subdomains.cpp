@@ -5,11 +5,13 @@
 // process with the native CG path (docs/distributed.md, "Subdomains").
 //
 // The scene of data/scenes/cube_3d.toml: E = 1, ν = 0.3, ρ = 1, P1+/P0, falling at 0.1
-// onto the plane z = −h/2, dt = h/2, the midpoint rule with extrapolated full steps
-// (time.reconstruct = false: the reconstruction's QP is not split yet), tol 1e-10.
+// onto the plane z = −h/2, dt = h/2, the midpoint rule with its full-step
+// reconstruction (eq. 14; by CG alone on the native path, as `cdyn run` takes it there),
+// tol 1e-10.
 // Not a Google Benchmark: every rank must run the same steps (collective solves).
 //
-//   mpirun -n P build/bench/bench_subdomains N STEPS            (subdomains, P ranks)
+//   mpirun -n P build/bench/bench_subdomains N STEPS [PC]       (subdomains, P ranks; PC: jacobi
+//                                                                 (default), hypre or gamg)
 //   build/bench/bench_subdomains N STEPS native                  (the whole problem)
 // prints per rank its cells and unknowns, its set-up, the mean step and QP time over
 // steps 6..STEPS (contact from step 6), and its peak memory; then the energy J(T).
@@ -57,7 +59,7 @@ ElasticContactData cube_data(double h) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_subdomains N STEPS [native]\n");
+    std::fprintf(stderr, "usage: bench_subdomains N STEPS [native | jacobi | hypre | gamg]\n");
     return 2;
   }
   // freed memory kept in the heap, as the cdyn program does (apps/cdyn/main.cpp: glibc
@@ -66,6 +68,7 @@ int main(int argc, char** argv) {
   mallopt(M_TRIM_THRESHOLD, -1);
   const int n = std::atoi(argv[1]), steps = std::atoi(argv[2]);
   const bool native = argc > 3 && std::string(argv[3]) == "native";
+  const std::string pc = argc > 3 && !native ? argv[3] : "";
   if (!native) petsc::initialize();
   const int me = petsc::rank(), ranks = petsc::size();
   const auto start = std::chrono::steady_clock::now();
@@ -77,7 +80,7 @@ int main(int argc, char** argv) {
   options.tol = 1e-10;
   options.pdas_cg_only = native;  // the native CG path (solver.linear = "cg")
   SchemeParameters parameters;
-  parameters.reconstruct = false;
+  parameters.reconstruct_by_cg = native;
   parameters.tol = options.tol;
 
   SubMesh sub;
@@ -89,7 +92,7 @@ int main(int argc, char** argv) {
   } else {
     const FESpace W(mesh, Element::P1Bubble, 3);  // the whole problem's numbering, nothing assembled
     const DirichletLift bc(W, {});
-    solver = petsc::make_petsc_subdomain_solver(unknowns_in_whole(W, bc, p, sub), options);
+    solver = petsc::make_petsc_subdomain_solver(unknowns_in_whole(W, bc, p, sub), options, pc);
   }
   auto scheme = make_time_scheme("midpoint", p, *solver, dt, parameters);
   State s;
