@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "cdyn/base/error.hpp"
@@ -192,6 +193,25 @@ TEST(Subdomains, TimeLoopsAgreeWithTheWholeProblemsInThePlane) {
 TEST(Subdomains, TimeLoopsAgreeWithTheWholeProblemsInSpace) {
   expect_time_loops_agree(unit_cube_mesh(4), MassSpec::pair(Element::P1Bubble, Element::P0), "midpoint");
   expect_time_loops_agree(unit_cube_mesh(4), MassSpec::pair(Element::P1Bubble, Element::P0), "midpoint", true);
+}
+
+// A share that fails the input checks on one rank (a NaN in r on the last) stops every
+// rank with an InputError, none left waiting in a collective call.
+TEST(Subdomains, ABadShareOnOneRankStopsEveryRank) {
+  const Mesh mesh = unit_square_mesh(6);
+  const ElasticContactData d = data(2, MassSpec::pair(Element::P1Bubble, Element::P0));
+  const int me = petsc::rank(), ranks = petsc::size();
+  const SubMesh sub = sub_mesh(mesh, slab_cells(mesh, me, ranks));
+  const ConstrainedProblem part = build_elastic_contact(sub.mesh, d);
+  const FESpace W(mesh, Element::P1Bubble, 2);
+  const DirichletLift bc(W, d.dirichlet_parts);
+  StepQP R = step_qp(part);
+  std::vector<int> global;
+  const std::vector<int> labels = unknowns_in_whole(W, bc, part, sub);
+  for (int i : kept_indices(R.condensation)) global.push_back(labels[i]);
+  auto solver = petsc::make_petsc_subdomain_solver(global, QPOptions{});
+  if (me == ranks - 1) R.qp.r[0] = NAN;
+  EXPECT_THROW(solver->solve(R.qp), InputError) << "rank " << me;
 }
 
 // The schemes not yet checked on subdomains are refused, naming the scheme.

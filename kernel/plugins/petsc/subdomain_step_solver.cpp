@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <cmath>
+#include <string>
 #include <memory>
 
 #include "cdyn/base/error.hpp"
@@ -57,12 +58,23 @@ class SubdomainStepSolver : public StepSolver {
 
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
     const auto start = std::chrono::steady_clock::now();
-    if (qp.saddle) throw InputError("solver", name() + " takes an explicit step matrix (not the saddle form)");
-    if (qp.size() != static_cast<int>(global_.size()))
-      throw InputError(name() + ": the QP has " + std::to_string(qp.size()) + " unknowns, the subdomain " +
-                       std::to_string(global_.size()));
+    // The input checks, agreed on by every rank before anything collective: a rank that
+    // threw alone would leave the others waiting in the next reduction.
+    std::string bad;
+    bool changed = false;
+    try {
+      if (qp.saddle) throw InputError("solver", name() + " takes an explicit step matrix (not the saddle form)");
+      if (qp.size() != static_cast<int>(global_.size()))
+        throw InputError(name() + ": the QP has " + std::to_string(qp.size()) + " unknowns, the subdomain " +
+                         std::to_string(global_.size()));
+      changed = checked_.check(qp, /*positive_definite=*/false, name());
+    } catch (const InputError& e) {
+      bad = e.what();
+    }
+    if (on_any_rank(!bad.empty()))
+      throw InputError(bad.empty() ? name() + ": another rank's share of the QP is not valid" : bad);
     // S assembled again when any rank's share changed
-    if (on_any_rank(checked_.check(qp, /*positive_definite=*/false, name()) || !q_.S)) assemble_matrix(qp.S);
+    if (on_any_rank(changed || !q_.S)) assemble_matrix(qp.S);
     assemble_vectors(qp, warm_start);
 
     SolveSettings settings;
