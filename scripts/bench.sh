@@ -1,5 +1,5 @@
 #!/bin/sh
-# bench.sh — runs the benchmark set of docs/performance.md, 19 minutes on the 2-core
+# bench.sh — runs the benchmark set of docs/performance.md, 14 minutes on the 2-core
 # machine when idle (keep it idle: every figure is a wall time).  Usage: scripts/bench.sh [BUILD_DIR] [OUT_DIR]
 # BUILD_DIR must be a Release build with the targets cdyn_app, bench_contact_step, bench_step_solvers,
 # bench_condition12, bench_bandwidth, bench_threads and bench_subdomains built (cmake --build BUILD --target
