@@ -12,7 +12,9 @@
 // held unknowns, its reaction, and a KKT residual ≤ tol; a warm start from the solution
 // takes one iteration.  The body is clamped on its left side; the plane is inclined
 // (rotated unknowns at the contact nodes) and rises towards the free end, onto which
-// gravity bends the body: a part of the contact nodes is held, on both ranks.
+// gravity bends the body: a part of the contact nodes is held (near the free end, the
+// last rank's).  Then the schemes stepped on the ranks' cells against the whole
+// problem's serial run, the schemes refused on shares, and a bad share on one rank.
 #include <gtest/gtest.h>
 
 #include <algorithm>
