@@ -42,13 +42,9 @@ Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X, co
 
 // max |F_i| and the scale max(‖X‖∞, ‖r ./ D‖∞) in one pass shared among the threads (a
 // maximum is exact in any order; a NaN anywhere makes the residual infinite).
-double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
-                    const Eigen::VectorXd* D_known) {
+KKTMaxima kkt_maxima(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                     const Eigen::VectorXd& D) {
   const int n = qp.size();
-  if (n == 0) return 0.0;
-  Eigen::VectorXd own;  // (the caller's D is read in place: no copy of n entries a call)
-  if (!D_known) own = scaling_diagonal(qp);
-  const Eigen::VectorXd& D = D_known ? *D_known : own;
   double F = 0.0, scale = 0.0;
   bool finite = true;
 #pragma omp parallel for schedule(static) reduction(max : F, scale) reduction(&& : finite) \
@@ -59,8 +55,17 @@ double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::Ve
     F = std::max(F, f);
     scale = std::max({scale, std::abs(X[i]), std::abs(qp.r[i] / D[i])});
   }
-  if (!finite) return std::numeric_limits<double>::infinity();
-  return scale > 0 ? F / scale : F;
+  if (!finite) F = std::numeric_limits<double>::infinity();
+  return {F, scale};
+}
+
+double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                    const Eigen::VectorXd* D_known) {
+  if (qp.size() == 0) return 0.0;
+  Eigen::VectorXd own;  // (the caller's D is read in place: no copy of n entries a call)
+  if (!D_known) own = scaling_diagonal(qp);
+  const KKTMaxima m = kkt_maxima(qp, X, reaction, D_known ? *D_known : own);
+  return m.residual();
 }
 
 double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X) {

@@ -9,6 +9,7 @@
 // S, r or the bounds, so one `tol` means the same thing for every solver.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,15 @@ Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X,
 double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X);
 double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
                     const Eigen::VectorXd* D = nullptr);  // D = scaling_diagonal(qp) if already known
+
+// The two maxima the measure is the ratio of, ‖F‖∞ (+∞ when an entry is not finite) and
+// max(‖X‖∞, ‖D⁻¹r‖∞): for a caller that takes them over several processes' unknowns.
+struct KKTMaxima {
+  double F = 0.0, scale = 0.0;
+  double residual() const { return std::isinf(F) || !(scale > 0) ? F : F / scale; }
+};
+KKTMaxima kkt_maxima(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                     const Eigen::VectorXd& D);
 
 // The unknowns at a bound according to the rule of QPResult::active.
 std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X,

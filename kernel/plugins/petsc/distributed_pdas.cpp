@@ -56,15 +56,8 @@ std::vector<signed char> held_set(DistributedQP& q, Vec D) {
   return held;
 }
 
-// max over the ranks of a local number
 // KSP's dtol that never triggers (see distributed_pdas).
 constexpr PetscReal kNoDivergenceTest = 1e300;
-
-double global_max(double local) {
-  double out = 0.0;
-  MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  return out;
-}
 
 // Whether two held sets agree on every rank (collective; a rank whose local sets differ
 // in size, e.g. against an empty "none yet", counts as a difference).

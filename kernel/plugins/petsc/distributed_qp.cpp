@@ -56,6 +56,12 @@ void destroy(Vec& v) {
 
 }  // namespace
 
+double global_max(double local) {
+  double out = 0.0;
+  MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, world());
+  return out;
+}
+
 void check(PetscErrorCode code, const char* call) {
   if (code == 0) return;
   const char* text = nullptr;

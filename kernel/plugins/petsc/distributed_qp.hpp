@@ -27,6 +27,9 @@ namespace cdyn::petsc {
 // A PETSc error code as an exception: NumericalError naming the call.
 void check(PetscErrorCode code, const char* call);
 
+// The largest of a local number over the ranks, on every rank (collective).
+double global_max(double local);
+
 // A PETSc object of a solve's own, destroyed when the solve leaves, also when a failure
 // is thrown on the way (every rank throws the same failure: the destruction stays
 // collective).  E.g. Owned<Vec, VecDestroy> b; VecDuplicate(r, b.out()); VecCopy(r, b).

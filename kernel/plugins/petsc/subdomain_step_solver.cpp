@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
-#include <cmath>
 #include <string>
 #include <memory>
 
@@ -21,11 +20,6 @@ namespace cdyn::petsc {
 namespace {
 
 MPI_Comm world() { return PETSC_COMM_WORLD; }
-
-double global_max(double local) {
-  MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_MAX, world());
-  return local;
-}
 
 // True on every rank when `changed` is on any.
 bool on_any_rank(bool changed) { return global_max(changed ? 1.0 : 0.0) > 0; }
@@ -218,21 +212,15 @@ class SubdomainStepSolver : public StepSolver {
     }
   }
 
-  // max_i |natural residual_i| / max(‖X‖∞, ‖D⁻¹r‖∞) over the whole problem (qp/kkt.hpp):
-  // each rank measures the rows it owns, with the summed r.
+  // The kernel's KKT residual of the whole problem (qp/kkt.hpp): each rank takes its two
+  // maxima over its unknowns (a shared one measured by every rank that holds it), with
+  // the summed r, and the ranks their maxima.
   double kkt_over_ranks(const BoundQP& qp, const QPResult& result, const Eigen::VectorXd& D) const {
-    const Eigen::VectorXd r = values_at(q_.r);
-    BoundQP whole_rows;  // this rank's unknowns with the summed r
-    whole_rows.r = r, whole_rows.lower = qp.lower, whole_rows.upper = qp.upper;
-    const Eigen::VectorXd F = natural_residual(whole_rows, result.X, result.reaction, D);
-    double f = 0.0, scale = 0.0;
-    for (Eigen::Index i = 0; i < F.size(); ++i) {
-      f = std::max(f, std::abs(F[i]));
-      scale = std::max({scale, std::abs(result.X[i]), std::abs(r[i] / D[i])});
-    }
-    if (!std::isfinite(f)) f = INFINITY;
-    f = global_max(f), scale = global_max(scale);
-    return scale > 0 ? f / scale : f;
+    BoundQP summed;  // this rank's unknowns with the summed r
+    summed.r = values_at(q_.r), summed.lower = qp.lower, summed.upper = qp.upper;
+    KKTMaxima m = kkt_maxima(summed, result.X, result.reaction, D);
+    m.F = global_max(m.F), m.scale = global_max(m.scale);
+    return m.residual();
   }
 
   std::vector<int> labels_;         // the whole problem's index of each of the subdomain's unknowns
