@@ -71,14 +71,6 @@ StepQP step_qp(const ConstrainedProblem& p) {
   return {std::move(c), std::move(qp)};
 }
 
-// The kept unknowns' indices among all (the condensed QP's numbering).
-std::vector<int> kept_indices(const StaticCondensation& c) {
-  Eigen::VectorXd all(c.n());
-  for (int i = 0; i < c.n(); ++i) all[i] = i;
-  const Eigen::VectorXd kept = c.kept(all);
-  return std::vector<int>(kept.data(), kept.data() + kept.size());
-}
-
 void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   const int me = petsc::rank(), ranks = petsc::size();
   const ElasticContactData d = data(mesh.dim, mass);
@@ -96,10 +88,10 @@ void expect_subdomains_solve_the_whole(const Mesh& mesh, const MassSpec& mass) {
   const StepQP R = step_qp(part);
   const std::vector<int> free_in_whole = unknowns_in_whole(*whole.W, *whole.bc, part, sub);
   std::vector<int> kept_of(W.condensation.n(), -1);
-  const std::vector<int> kept_whole = kept_indices(W.condensation);
+  const std::vector<int>& kept_whole = W.condensation.kept_unknowns();
   for (std::size_t i = 0; i < kept_whole.size(); ++i) kept_of[kept_whole[i]] = static_cast<int>(i);
   std::vector<int> global;
-  for (int i : kept_indices(R.condensation)) global.push_back(kept_of[free_in_whole[i]]);
+  for (int i : R.condensation.kept_unknowns()) global.push_back(kept_of[free_in_whole[i]]);
 
   auto solver = petsc::make_petsc_subdomain_solver(global, options);
   const QPResult result = solver->solve(R.qp);
@@ -210,7 +202,7 @@ TEST(Subdomains, ABadShareOnOneRankStopsEveryRank) {
   StepQP R = step_qp(part);
   std::vector<int> global;
   const std::vector<int> labels = unknowns_in_whole(W, bc, part, sub);
-  for (int i : kept_indices(R.condensation)) global.push_back(labels[i]);
+  for (int i : R.condensation.kept_unknowns()) global.push_back(labels[i]);
   auto solver = petsc::make_petsc_subdomain_solver(global, QPOptions{});
   if (me == ranks - 1) R.qp.r[0] = NAN;
   EXPECT_THROW(solver->solve(R.qp), InputError) << "rank " << me;

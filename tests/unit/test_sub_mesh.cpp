@@ -52,11 +52,9 @@ void expect_sums_to_whole(const Mesh& mesh) {
   const SparseMatrix S = whole.A + k * *whole.mass->matrix();
   const StaticCondensation cond(S, whole.lower, whole.upper, bubble_unknowns(whole));
   ASSERT_EQ(cond.n_condensed(), mesh.dim * mesh.n_cells());  // every bubble
-  Eigen::VectorXd index(n);
-  for (int i = 0; i < n; ++i) index[i] = i;
-  const Eigen::VectorXd kept = cond.kept(index);  // the kept unknowns' indices
+  const std::vector<int>& kept = cond.kept_unknowns();
   std::vector<int> kept_of(n, -1);
-  for (int i = 0; i < kept.size(); ++i) kept_of[static_cast<int>(kept[i])] = i;
+  for (std::size_t i = 0; i < kept.size(); ++i) kept_of[kept[i]] = static_cast<int>(i);
 
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n), M = A, Sc = Eigen::MatrixXd::Zero(cond.n_kept(), cond.n_kept());
   Eigen::VectorXd L = Eigen::VectorXd::Zero(n);

@@ -61,6 +61,8 @@ class StaticCondensation {
   int n_kept() const { return static_cast<int>(kept_.size()); }
   int n_condensed() const { return static_cast<int>(condensed_.size()); }
   bool condenses(int i) const { return kept_of_[i] < 0; }
+  // The kept unknowns, increasing: unknown kept_unknowns()[k] is the condensed QP's k.
+  const std::vector<int>& kept_unknowns() const { return kept_; }
 
   // The full S it was built from, and S_c = S_vv − S_vb S_bb⁻¹ S_bv (symmetric, both
   // triangles, compressed).

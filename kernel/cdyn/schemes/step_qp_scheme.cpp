@@ -65,13 +65,12 @@ void StepQPScheme::build(double a, double m) {
 }
 
 void StepQPScheme::tell_unknowns() {
+  if (condensation_) {
+    solver_.set_unknowns(condensation_->kept_unknowns());
+    return;
+  }
   std::vector<int> free_unknowns(p_.n_free());
   for (int i = 0; i < p_.n_free(); ++i) free_unknowns[i] = i;
-  if (condensation_) {
-    free_unknowns.clear();
-    for (int i = 0; i < p_.n_free(); ++i)
-      if (!condensation_->condenses(i)) free_unknowns.push_back(i);
-  }
   solver_.set_unknowns(free_unknowns);
 }
 
@@ -82,11 +81,9 @@ void StepQPScheme::map_friction() {
   std::vector<int> index(p_.n_free());
   for (int i = 0; i < p_.n_free(); ++i) index[i] = i;
   if (condensation_) {
-    Eigen::VectorXd all(p_.n_free());
-    for (int i = 0; i < p_.n_free(); ++i) all[i] = i;
-    const Eigen::VectorXd kept = condensation_->kept(all);
+    const std::vector<int>& kept = condensation_->kept_unknowns();
     std::fill(index.begin(), index.end(), -1);
-    for (int j = 0; j < kept.size(); ++j) index[static_cast<int>(kept[j])] = j;
+    for (std::size_t j = 0; j < kept.size(); ++j) index[kept[j]] = static_cast<int>(j);
   }
   for (const FrictionNode& node : p_.friction) {
     FrictionContact c;
