@@ -66,25 +66,28 @@ double Mesh::h_max() const {
   return h;
 }
 
+FacetKey facet_key(const std::array<int, 3>& vertices, int dim) {
+  FacetKey k{-1, -1, -1};
+  std::copy(vertices.begin(), vertices.begin() + dim, k.begin());
+  // insertion sort of at most three entries (std::sort with a bound of dim trips GCC 12's
+  // -Warray-bounds)
+  for (int i = 1; i < dim; ++i)
+    for (int j = i; j > 0 && k[j - 1] > k[j]; --j) std::swap(k[j - 1], k[j]);
+  return k;
+}
+
+FacetKey cell_facet(const Cell& cell, int dim, int skip) {
+  std::array<int, 3> f{-1, -1, -1};
+  for (int k = 0; k < dim; ++k) f[k] = cell[(skip + 1 + k) % (dim + 1)];
+  return facet_key(f, dim);
+}
+
 void Mesh::complete_boundary() {
-  // A facet is the sorted set of its dim vertices (the unused entries −1); the facets
-  // of a cell are its vertex sets without one vertex.
-  using Key = std::array<int, 3>;
-  auto key = [this](const std::array<int, 3>& v) {
-    Key k{-1, -1, -1};
-    std::copy(v.begin(), v.begin() + dim, k.begin());
-    std::sort(k.begin(), k.begin() + dim);
-    return k;
-  };
-  std::map<Key, int> count;
+  std::map<FacetKey, int> count;
   for (const auto& t : cells)
-    for (int skip = 0; skip <= dim; ++skip) {
-      std::array<int, 3> f{-1, -1, -1};
-      for (int k = 0; k < dim; ++k) f[k] = t[(skip + 1 + k) % (dim + 1)];
-      ++count[key(f)];
-    }
-  std::map<Key, bool> known;
-  for (const auto& f : boundary) known[key(f.vertices)] = true;
+    for (int skip = 0; skip <= dim; ++skip) ++count[cell_facet(t, dim, skip)];
+  std::map<FacetKey, bool> known;
+  for (const auto& f : boundary) known[facet_key(f.vertices, dim)] = true;
   for (const auto& [k, n] : count)
     if (n == 1 && !known.count(k)) boundary.push_back({k, -1});
 }

@@ -41,6 +41,13 @@ struct BoundaryFacet {
 
 using Cell = std::array<int, 4>;  // the first dim + 1 entries are used
 
+// A facet as the sorted set of its dim vertices, the unused entries −1: the key under
+// which a cell's facet and a boundary facet are the same.
+using FacetKey = std::array<int, 3>;
+FacetKey facet_key(const std::array<int, 3>& vertices, int dim);
+// The facet of a cell opposite its vertex `skip` (0 … dim), as a key.
+FacetKey cell_facet(const Cell& cell, int dim, int skip);
+
 struct Mesh {
   int dim = 2;                                 // 1 (intervals), 2 (triangles) or 3 (tetrahedra)
   std::vector<Point> vertices;                 // coordinates

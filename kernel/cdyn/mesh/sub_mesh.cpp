@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <set>
 #include <string>
 
@@ -11,36 +10,21 @@
 
 namespace cdyn {
 
-namespace {
-
-using FacetKey = std::array<int, 3>;
-
-// A facet's vertices sorted, the unused entries last.
-FacetKey facet_key(const int* vertices, int n) {
-  constexpr int kUnused = std::numeric_limits<int>::max();
-  FacetKey key{kUnused, kUnused, kUnused};
-  for (int k = 0; k < n; ++k) key[k] = vertices[k];
-  std::sort(key.begin(), key.end());
-  return key;
-}
-
-}  // namespace
-
 SubMesh sub_mesh(const Mesh& mesh, const std::vector<int>& cells) {
   const int d = mesh.dim;
   SubMesh sub;
   sub.cell = cells;
-  std::vector<int> local(mesh.n_vertices(), -1);
-  std::vector<char> taken(mesh.n_cells(), 0);
+  std::vector<char> taken(mesh.n_cells(), 0), held(mesh.n_vertices(), 0);
   for (int c : cells) {
     if (c < 0 || c >= mesh.n_cells()) throw InputError("sub_mesh: cell " + std::to_string(c) + " does not exist");
     if (taken[c]) throw InputError("sub_mesh: cell " + std::to_string(c) + " is listed twice");
     taken[c] = 1;
-    for (int k = 0; k <= d; ++k) local[mesh.cells[c][k]] = 0;
+    for (int k = 0; k <= d; ++k) held[mesh.cells[c][k]] = 1;
   }
   // the vertices in the mesh's order, so that P_r keeps the order of the unknowns
+  std::vector<int> local(mesh.n_vertices(), -1);
   for (int v = 0; v < mesh.n_vertices(); ++v)
-    if (local[v] == 0) {
+    if (held[v]) {
       local[v] = static_cast<int>(sub.vertex.size());
       sub.vertex.push_back(v);
     }
@@ -56,18 +40,13 @@ SubMesh sub_mesh(const Mesh& mesh, const std::vector<int>& cells) {
     for (int k = 0; k <= d; ++k) cell[k] = local[mesh.cells[c][k]];
     m.cells.push_back(cell);
     if (!mesh.cell_region.empty()) m.cell_region.push_back(mesh.cell_region[c]);
-    for (int skip = 0; skip <= d; ++skip) {  // facet `skip`: the cell without its vertex skip
-      int f[3], n = 0;
-      for (int k = 0; k <= d; ++k)
-        if (k != skip) f[n++] = mesh.cells[c][k];
-      own_facets.insert(facet_key(f, d));
-    }
+    for (int skip = 0; skip <= d; ++skip) own_facets.insert(cell_facet(mesh.cells[c], d, skip));
   }
 
   // A boundary facet lies in exactly one cell: it is this sub-mesh's when its cell is.
   // The others' vertices held here are on their part all the same.
   for (const BoundaryFacet& f : mesh.boundary) {
-    if (own_facets.count(facet_key(f.vertices.data(), d))) {
+    if (own_facets.count(facet_key(f.vertices, d))) {
       BoundaryFacet g = f;
       for (int k = 0; k < d; ++k) g.vertices[k] = local[f.vertices[k]];
       m.boundary.push_back(g);
