@@ -225,6 +225,17 @@ TEST(Subdomains, OtherSchemesAreRefused) {
       EXPECT_NE(std::string(e.what()).find(scheme), std::string::npos) << e.what();
     }
   }
+  // the midpoint rule of P1+/P1, whose full steps are reconstructed by multipliers in
+  // saddle form (not split): refused when the scheme is made, before any solve
+  const ConstrainedProblem saddle =
+      build_elastic_contact(sub.mesh, data(2, MassSpec::pair(Element::P1Bubble, Element::P1)));
+  auto shared_saddle = petsc::make_petsc_subdomain_solver(unknowns_in_whole(W, bc, saddle, sub), QPOptions{});
+  try {
+    make_time_scheme("midpoint", saddle, *shared_saddle, 0.01);
+    ADD_FAILURE() << "P1+/P1's reconstruction was not refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("multipliers"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Subdomains, TimeLoopsAgreeWithTheConsistentMass) {

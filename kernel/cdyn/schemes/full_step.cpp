@@ -43,6 +43,10 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
     // (the pairs: their velocity() is C⁻¹B and momentum() Bᵀ, which the method uses; a
     // classical model's saddle factors are internal)
     if (!p.mass->velocity_is_rate()) method_ = Method::Multipliers;
+    // (its saddle-form QPs are not split over subdomains: only the local basis's is)
+    if (method_ == Method::Multipliers && step && step->solves_a_share())
+      throw InputError("scheme", "the full-step reconstruction of " + p.mass->name() +
+                                     " (by multipliers) does not run on subdomains yet");
     return;
   }
   modes_ = std::move(*modes);
