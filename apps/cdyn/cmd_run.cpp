@@ -166,6 +166,18 @@ std::vector<std::string> command_line_paths(std::vector<std::string> sets) {
   return sets;
 }
 
+bool runs_on_subdomains(const RunOptions& opt) {
+  try {
+    const Scene scene = opt.resume.empty() ? fresh_start(opt).scene
+                                           : Scene::from_string(read_text(std::filesystem::path(opt.resume) / "scene.toml",
+                                                                          "no such file"),
+                                                                "scene.toml");
+    return scene.string("solver.partition", "none") != "none";
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 int cmd_run(const RunOptions& opt) {
   Start start = opt.resume.empty() ? fresh_start(opt) : resumed_start(opt);
   const std::optional<RunCheckpoint>& resume = start.checkpoint;
@@ -173,16 +185,21 @@ int cmd_run(const RunOptions& opt) {
   if (resume) check_sizes(*resume, sim, start.out);
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
+  // On subdomains every rank runs this function, the first alone writing and reporting;
+  // what the ranks record is summed over them (partition.hpp).
+  const bool writes = writes_files(sim);
   std::vector<std::string> warnings = run_warnings(sim);
-  if (opt.warnings)
+  if (opt.warnings && writes)
     for (const std::string& w : warnings) std::fprintf(stderr, "cdyn: warning: %s\n", w.c_str());
 
   const std::filesystem::path& out = start.out;
   std::error_code ec;
-  std::filesystem::create_directories(out, ec);
-  if (ec) throw InputError(out.string() + ": cannot create the output directory (" + ec.message() + ")");
-  remove_previous_outputs(out, resume.has_value());
-  if (!resume) write_file_atomically(out / "scene.toml", start.scene_text);
+  if (writes) {
+    std::filesystem::create_directories(out, ec);
+    if (ec) throw InputError(out.string() + ": cannot create the output directory (" + ec.message() + ")");
+    remove_previous_outputs(out, resume.has_value());
+    if (!resume) write_file_atomically(out / "scene.toml", start.scene_text);
+  }
   const int checkpoint_every = sim.spec.output.checkpoint_every;
   const std::filesystem::path journals = checkpoint_every > 0 ? checkpoint_dir(out) : std::filesystem::path();
   if (!journals.empty()) std::filesystem::create_directories(journals);
@@ -191,23 +208,25 @@ int cmd_run(const RunOptions& opt) {
   // The state and everything summed over the steps: from t = 0, or from the checkpoint.
   State s = resume ? resume->state : sim.initial;
   if (resume) sim.scheme->restore(resume->scheme);
-  const Energy E_initial = resume ? resume->E_initial : sim.scheme->energy(s);
+  const Energy E_initial = resume ? resume->E_initial : summed(sim, sim.scheme->energy(s));
   const double E0 = E_initial.total();
   EnergyDrift drift = resume ? EnergyDrift(E0, resume->drift_abs, resume->drift_half_sum) : EnergyDrift(E_initial);
   RunTotals totals = resume ? resume->totals : RunTotals{};
-  if (!resume) totals.max_violation = p.max_violation(s.U);
-  double E_final = sim.scheme->energy(s).total();
+  if (!resume) totals.max_violation = largest(sim, p.max_violation(s.U));
+  double E_final = summed(sim, sim.scheme->energy(s)).total();
   Eigen::VectorXd rate = resume ? resume->rate : Eigen::VectorXd::Zero(p.W->n_dofs());
   Eigen::VectorXd force_xy = reaction_xy(p, s.reaction);  // the last step's reaction in (x, y), for every output
 
   // The work of the data in t (a load L(t), a moving obstacle) since t = 0: the scheme's
   // own balance when it keeps one exactly (discrete_gradient), else the midpoint
   // quadrature of problems/data_work.hpp; J is balanced against it (and against the
-  // damping's work W_d).
+  // damping's work W_d).  (On subdomains the reaction's work on the unknowns each rank owns.)
   auto add_data_work = [&](const StepStats& st, double t_before, const Eigen::VectorXd& U_before) {
     if (!has_data_in_t(p)) return;
-    totals.data_work += st.external_work ? *st.external_work
-                                         : data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), s.reaction);
+    totals.data_work +=
+        st.external_work
+            ? *st.external_work
+            : summed(sim, data_increment(p, t_before, s.t).work(p, 0.5 * (U_before + s.U), owned_part(sim, s.reaction)));
   };
   auto record = [&](int step, const StepStats& st, double step_seconds, const Energy& E) {
     E_final = E.total();
@@ -255,13 +274,14 @@ int cmd_run(const RunOptions& opt) {
     if (fields) write_fields(0);
   }
 
-  const bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
+  const bool show_progress = !opt.quiet && writes && isatty(STDERR_FILENO);
   const int first = resume ? resume->step + 1 : 1;
   int steps_done = first - 1;
   // Ctrl-C stops the loop after the step in progress (interrupt.hpp); the guard stays
   // through the plots, whose interruption leaves the data files complete.
   InterruptGuard guard;
-  for (int n = first; n <= sim.n_steps && !interrupted(); ++n) {
+  // (on subdomains the ranks stop together: any rank's Ctrl-C stops them all)
+  for (int n = first; n <= sim.n_steps && !on_any_rank(sim, interrupted()); ++n) {
     const Eigen::VectorXd U_old = s.U;
     const double t_old = s.t;
     StepStats st;
@@ -282,8 +302,9 @@ int cmd_run(const RunOptions& opt) {
       const auto ts = Clock::now();
       st = sim.scheme->step(s);
       step_seconds = seconds_since(ts);
-      if (!s.U.allFinite() || !s.V.allFinite()) throw NumericalError("the solution is not finite (NaN or Inf)");
-      E = sim.scheme->energy(s);
+      if (on_any_rank(sim, !s.U.allFinite() || !s.V.allFinite()))
+        throw NumericalError("the solution is not finite (NaN or Inf)");
+      E = summed(sim, sim.scheme->energy(s));
       if (!std::isfinite(E.total())) throw NumericalError("the energy is not finite (the solution blew up)");
     } catch (const NumericalError& e) {
       fail(e.what());
@@ -295,7 +316,8 @@ int cmd_run(const RunOptions& opt) {
     // nodes of an inclined plane); on the fixed dofs it stays 0 (U_D is constant in time)
     const Eigen::VectorXd du = p.global(s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
-    totals.add(st, p.max_violation(s.U, s.t));
+    if (sim.spec.time.parameters.damping.active()) st.dissipated = summed(sim, st.dissipated);
+    totals.add(st, largest(sim, p.max_violation(s.U, s.t)));
     add_data_work(st, t_old, U_old);
     record(n, st, step_seconds, E);
     steps_done = n;
@@ -310,7 +332,7 @@ int cmd_run(const RunOptions& opt) {
   // left to resume.
   if (partial && checkpoint_every > 0 && steps_done > last_checkpoint) checkpoint(steps_done);
   if (partial && fields && steps_done % sim.output_every != 0) write_fields(steps_done);  // the last state computed
-  if (!partial) std::filesystem::remove_all(checkpoint_dir(out), ec);
+  if (!partial && writes) std::filesystem::remove_all(checkpoint_dir(out), ec);
   totals = totals_now();
   if (show_progress) std::fprintf(stderr, "\n");
   history.close();
@@ -325,6 +347,7 @@ int cmd_run(const RunOptions& opt) {
   }
   const RunOutcome outcome{sim, out, s, steps_done, partial, resume ? resume->step : -1, E0, E_final, drift, totals,
                            history, warnings, u_exact};
+  if (!writes) return partial ? 130 : 0;  // (the first rank reports)
   const nlohmann::ordered_json summary = run_summary(outcome);
   write_file_atomically(out / "summary.json", summary.dump(2) + "\n");
 

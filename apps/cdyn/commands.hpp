@@ -31,6 +31,11 @@ struct RunOptions {
 };
 int cmd_run(const RunOptions& options);
 
+// Whether the scene of these options asks for a run on subdomains (solver.partition),
+// which every rank of mpirun runs; false also when the scene cannot be read (the run
+// then reports why, from rank 0).
+bool runs_on_subdomains(const RunOptions& options);
+
 // --set values that name files (mesh.file) are relative to the current directory, as
 // one typing them expects, not to the scene file's directory as in the scene file:
 // makes them absolute.  Applied by every command that takes --set.

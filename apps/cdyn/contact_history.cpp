@@ -1,14 +1,38 @@
 // contact_history.cpp — contact.csv and the impact summary of an elasticity run.
 #include "contact_history.hpp"
 
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
 #include "cdyn/post/contact_force.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 
 namespace cdyn::app {
 
+namespace {
+
+// A row's columns from the vertex to the pressure (the friction columns follow).
+void write_row(std::ostream& csv, int step, double t, int vertex, const Point& a, int dim, double s, double gap,
+               double force, double pressure) {
+  csv << step << "," << t << "," << vertex << "," << a.x << "," << a.y << ",";
+  if (dim == 3) csv << a.z << ",";
+  csv << s << "," << gap << "," << force << "," << pressure;
+}
+
+}  // namespace
+
 ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file,
                                const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
-    : mesh_(*sim.mesh), problem_(sim.problem), contact_(sim.problem), csv_(file, journal, resume) {
+    : sim_(sim), mesh_(*sim.mesh), problem_(sim.problem), contact_(sim.problem), csv_(file, journal, resume) {
   friction_ = !problem_.friction.empty();
+  if (sim.partition) {  // a vertex's share of Γ_C: its facets' on every rank
+    const SubMesh& sub = sim.partition->sub;
+    std::vector<double> w(sim.partition->whole.n_vertices(), 0.0);
+    for (const ContactPressure::Vertex& c : contact_.vertices()) w[sub.vertex[c.vertex]] += c.weight;
+    summed(sim, w);
+    for (const ContactPressure::Vertex& c : contact_.vertices()) whole_weight_.push_back(w[sub.vertex[c.vertex]]);
+  }
   friction_of_.assign(mesh_.n_vertices(), -1);
   for (std::size_t k = 0; k < problem_.friction.size(); ++k)
     friction_of_[problem_.contact_nodes[problem_.friction[k].node].vertex] = static_cast<int>(k);
@@ -23,6 +47,7 @@ ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::pat
 
 double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U_full,
                               const Eigen::VectorXd& reaction_xy, bool write) {
+  if (sim_.partition) return record_share(step, s, U_full, reaction_xy, write);
   const double t = s.t;
   double total = 0.0;
   std::ostream& csv = csv_.rows();
@@ -34,11 +59,8 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
     const double force = contact_.normal_force(reaction_xy, c);
     total += force;
     if (!write) continue;
-    const Point& a = mesh_.vertices[c.vertex];
-    csv << step << "," << t << "," << c.vertex << "," << a.x << "," << a.y << ",";
-    if (mesh_.dim == 3) csv << a.z << ",";
-    csv << c.s << ","
-        << contact_.gap(U_full, c, t) << "," << force << "," << (c.weight > 0.0 ? force / c.weight : 0.0);
+    write_row(csv, step, t, c.vertex, mesh_.vertices[c.vertex], mesh_.dim, c.s, contact_.gap(U_full, c, t), force,
+              c.weight > 0.0 ? force / c.weight : 0.0);
     if (friction_) {
       const int k = friction_of_[c.vertex];
       const char* zeros = mesh_.dim == 3 ? ",0,0,0,0,0,0" : "";
@@ -61,6 +83,42 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
     csv << "\n";
   }
   if (write) csv_.end_rows();
+  return total;
+}
+
+double ContactHistory::record_share(int step, const State& s, const Eigen::VectorXd& U_full,
+                                    const Eigen::VectorXd& reaction_xy, bool write) {
+  const Partition& part = *sim_.partition;
+  constexpr int kColumns = 9;  // obstacle, s, vertex, x, y, z, gap, force, pressure
+  std::vector<double> mine;
+  double total = 0.0;
+  const std::vector<ContactPressure::Vertex>& vertices = contact_.vertices();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const ContactPressure::Vertex& c = vertices[i];
+    if (!part.owns_vertex[c.vertex]) continue;
+    const double force = contact_.normal_force(reaction_xy, c);
+    total += force;
+    if (!write) continue;
+    const Point& a = mesh_.vertices[c.vertex];
+    const double w = whole_weight_[i];
+    mine.insert(mine.end(), {static_cast<double>(contact_.node(c).obstacle), c.s,
+                             static_cast<double>(part.sub.vertex[c.vertex]), a.x, a.y, a.z,
+                             contact_.gap(U_full, c, s.t), force, w > 0.0 ? force / w : 0.0});
+  }
+  if (!write) return total;
+  const std::vector<double> all = petsc::gather_on_first_rank(mine);
+  // a serial run's order (ContactPressure's: by obstacle, s, vertex)
+  std::vector<int> order(all.size() / kColumns);
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](int k) { return std::tie(all[k * kColumns], all[k * kColumns + 1], all[k * kColumns + 2]); };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  std::ostream& csv = csv_.rows();
+  for (int k : order) {
+    const double* r = &all[k * kColumns];
+    write_row(csv, step, s.t, static_cast<int>(r[2]), Point{r[3], r[4], r[5]}, mesh_.dim, r[1], r[6], r[7], r[8]);
+    csv << "\n";
+  }
+  csv_.end_rows();
   return total;
 }
 

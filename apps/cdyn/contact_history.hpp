@@ -25,6 +25,9 @@ class ContactHistory {
   ContactHistory(const Simulation& sim, const std::filesystem::path& file, const std::filesystem::path& journal,
                  const std::optional<JournalMark>& resume);
 
+  // On subdomains (partition.hpp) every rank records the vertices it owns, their
+  // pressures by their whole share of Γ_C; the first rank writes the rows of all, in
+  // the order of a serial run.
   // The total normal contact force Σ F_N(a) of the state (U_full all dofs of W^h,
   // reaction_xy the reaction in Cartesian free components, empty before step 1); writes
   // the rows when `write` is true.
@@ -32,6 +35,7 @@ class ContactHistory {
   // tangential unknown, along t = (−n_y, n_x)), the slip of the last step along t and
   // the status (0 open, 1 stick, 2 slip; −1 at a vertex without friction).
   double record(int step, const State& s, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy, bool write);
+  // (the force on this rank's vertices, on subdomains)
 
   // Gives the file its name (it is written under a temporary one until then: a run
   // that dies leaves no contact.csv that looks complete, atomic_file.hpp).
@@ -39,12 +43,18 @@ class ContactHistory {
   JournalMark checkpoint() { return csv_.checkpoint(); }
 
  private:
+  // The rows of a run on subdomains: this rank's gathered on the first, sorted.
+  double record_share(int step, const State& s, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
+                      bool write);
+
+  const Simulation& sim_;
   const Mesh& mesh_;
   const ConstrainedProblem& problem_;
   ContactPressure contact_;
   CsvOutput csv_;
   std::vector<int> friction_of_;  // per vertex of the mesh, its friction node or −1
   bool friction_ = false;
+  std::vector<double> whole_weight_;  // on subdomains: w(a) of contact_'s vertices over every rank's Γ_C
 };
 
 // summary.json's "impact" entry.

@@ -5,8 +5,10 @@ namespace cdyn::app {
 
 CsvOutput::CsvOutput(const std::filesystem::path& target, const std::filesystem::path& journal,
                      const std::optional<JournalMark>& resume)
-    : file_(target), resumed_(resume.has_value()) {
+    : resumed_(resume.has_value()) {
   rows_.precision(17);
+  if (target.empty()) return;
+  file_.emplace(target);
   if (journal.empty()) return;
   if (!resume) {
     journal_.emplace(journal);
@@ -14,12 +16,12 @@ CsvOutput::CsvOutput(const std::filesystem::path& target, const std::filesystem:
   }
   std::string kept;
   journal_.emplace(journal, *resume, &kept);
-  file_.stream() << kept;
+  file_->stream() << kept;
 }
 
 void CsvOutput::end_rows() {
   const std::string_view text = rows_.view();
-  file_.stream() << text;
+  if (file_) file_->stream() << text;
   if (journal_) unjournaled_ += text;
   rows_.str("");
 }

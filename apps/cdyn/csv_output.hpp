@@ -18,6 +18,8 @@ class CsvOutput {
  public:
   // A new file (`journal` empty: no checkpoints), or with `resume` the file of a resumed
   // run, starting with the rows (header included) of the journal taken back at that mark.
+  // `target` empty: no file (a rank of a run on subdomains other than the first, whose
+  // records only take part in the sums).
   CsvOutput(const std::filesystem::path& target, const std::filesystem::path& journal,
             const std::optional<JournalMark>& resume = {});
 
@@ -29,10 +31,12 @@ class CsvOutput {
   // Appends the rows since the last checkpoint to the journal: its mark for the checkpoint.
   JournalMark checkpoint();
   // Gives the file its name.
-  void commit() { file_.commit(); }
+  void commit() {
+    if (file_) file_->commit();
+  }
 
  private:
-  AtomicFile file_;
+  std::optional<AtomicFile> file_;
   std::optional<Journal> journal_;
   std::ostringstream rows_;
   std::string unjournaled_;  // the rows since the last checkpoint

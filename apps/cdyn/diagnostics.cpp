@@ -31,7 +31,7 @@ std::string time_step_warning(const Simulation& sim) {
   const bool elastic = s.physics.model == "elasticity";
   const double stiffness = elastic ? s.physics.lame.mu : s.physics.stiffness;
   if (!(stiffness > 0.0) || !(s.physics.rho > 0.0)) return "";
-  const double c = std::sqrt(stiffness / s.physics.rho), h = sim.mesh->h_max();
+  const double c = std::sqrt(stiffness / s.physics.rho), h = sim.whole.h;
   if (dt * c <= h) return "";
   const char* speed = elastic ? "the shear wave speed sqrt(mu/rho)"
                               : s.physics.model == "bar" ? "sqrt(E/rho)" : "sqrt(tension/rho)";
@@ -55,7 +55,7 @@ std::vector<std::string> run_warnings(const Simulation& sim) {
 
 std::string penetration_warning(const Simulation& sim, double max_penetration, double max_violation) {
   // Beyond round-off of the coordinates: a billionth of the mesh size.
-  if (!(max_penetration > max_violation + 1e-9 * sim.mesh->h_max())) return "";
+  if (!(max_penetration > max_violation + 1e-9 * sim.whole.h)) return "";
   char text[320];
   std::snprintf(text, sizeof text,
                 "the boundary went %.3g into an obstacle (max_penetration) where the constrained vertices went %.3g: "

@@ -6,7 +6,9 @@
 //
 // Under `mpirun -n P` (P > 1) rank 0 runs the command and the other ranks serve the
 // distributed step solves of the PETSc back end (qp/petsc/backend.hpp,
-// docs/distributed.md); only rank 0 reads the scene, writes and reports.
+// docs/distributed.md); only rank 0 reads the scene, writes and reports.  A run on
+// subdomains (solver.partition) is run by every rank, each on its own cells; rank 0
+// alone writes and reports.
 #include <CLI/CLI.hpp>
 #include <iostream>
 #ifdef __GLIBC__
@@ -100,8 +102,13 @@ int main(int argc, char** argv) {
       std::cerr << "cdyn: error: " << e.what() << "\n";
       return 2;
     }
-    if (cdyn::petsc::rank() != 0) return cdyn::petsc::end_process(cdyn::petsc::serve());
+    if (*run && cdyn::app::runs_on_subdomains(run_options))
+      cdyn::petsc::every_rank_runs();
+    else if (cdyn::petsc::rank() != 0)
+      return cdyn::petsc::end_process(cdyn::petsc::serve());
   }
+  // (on subdomains every rank meets the same error: the first one says it)
+  const bool says = cdyn::petsc::rank() == 0;
   auto command = [&]() -> int {
     try {
       if (*run) return cdyn::app::cmd_run(run_options);
@@ -112,10 +119,10 @@ int main(int argc, char** argv) {
       }
       if (*mesh) return cdyn::app::cmd_mesh(mesh_file, mesh_sets);
     } catch (const cdyn::InputError& e) {
-      std::cerr << "cdyn: error: " << e.what() << "\n";
+      if (says) std::cerr << "cdyn: error: " << e.what() << "\n";
       return 2;
     } catch (const cdyn::NumericalError& e) {
-      std::cerr << "cdyn: numerical failure: " << e.what() << "\n";
+      if (says) std::cerr << "cdyn: numerical failure: " << e.what() << "\n";
       return 3;
     }
     return 0;

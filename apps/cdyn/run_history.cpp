@@ -23,13 +23,19 @@ std::vector<std::string> probe_columns(const Simulation& sim, const Probe& pr) {
 
 // The probe values of the current state, in the order of probe_columns: u (full
 // field), v (displacement rate over the last step) at the point, and λ at the vertex
-// nearest to it (scalar: the seed's multiplier; elasticity: λ_N = −F·n).
+// nearest to it (scalar: the seed's multiplier; elasticity: λ_N = −F·n).  On
+// subdomains 0 for the values of a cell or vertex of another rank (partition.hpp).
 std::vector<double> probe(const Simulation& sim, const Probe& pr, const Eigen::VectorXd& U_full,
                           const Eigen::VectorXd& rate_full, const Eigen::VectorXd& reaction_xy) {
   const FESpace& W = *sim.problem.W;
   std::vector<double> out;
   for (const Eigen::VectorXd* field : {&U_full, &rate_full})
-    for (int k = 0; k < sim.components; ++k) out.push_back(W.value_in_cell(*field, pr.where.cell, pr.where.xi, k));
+    for (int k = 0; k < sim.components; ++k)
+      out.push_back(pr.where.cell >= 0 ? W.value_in_cell(*field, pr.where.cell, pr.where.xi, k) : 0.0);
+  if (pr.vertex < 0) {
+    out.push_back(0.0);
+    return out;
+  }
   const Point lambda = vertex_multiplier(sim.problem, reaction_xy, pr.vertex);
   if (sim.components == 1) {
     out.push_back(lambda.x);
@@ -55,8 +61,9 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
       damped_(sim.spec.time.parameters.damping.active()),
       data_in_t_(has_data_in_t(sim.problem)),
       friction_(!sim.problem.friction.empty()),
-      csv_(out / "history.csv", journal_dir.empty() ? journal_dir : journal_dir / "history.csv",
-           mark(resume, &HistoryMemory::history)) {
+      writes_(writes_files(sim)),
+      csv_(writes_ ? out / "history.csv" : std::filesystem::path(),
+           journal_dir.empty() ? journal_dir : journal_dir / "history.csv", mark(resume, &HistoryMemory::history)) {
   if (resume) {
     impact_ = ImpactMonitor(resume->impact);
     max_penetration_ = resume->max_penetration;
@@ -68,8 +75,8 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
     momentum_.emplace(sim.problem);
     csv << ",contact_force,px,py" << (sim.components == 3 ? ",pz" : "");
     if (sim.has_obstacle) {
-      contact_.emplace(sim, out / "contact.csv", journal_dir.empty() ? journal_dir : journal_dir / "contact.csv",
-                       mark(resume, &HistoryMemory::contact));
+      contact_.emplace(sim, writes_ ? out / "contact.csv" : std::filesystem::path(),
+                       journal_dir.empty() ? journal_dir : journal_dir / "contact.csv", mark(resume, &HistoryMemory::contact));
       penetration_.emplace(sim.problem);
       csv << ",penetration";
     }
@@ -94,21 +101,24 @@ void History::record(int step, const State& s, const StepStats& st, double step_
   const Eigen::VectorXd U_full = p.full(s.U);
   if (momentum_) {
     const bool write = step % sim_.contact_every == 0 || step == sim_.n_steps;
-    const double force = contact_ ? contact_->record(step, s, U_full, reaction_xy, write) : 0.0;
-    const Point P = (*momentum_)(s.V);
+    const double force = contact_ ? summed(sim_, contact_->record(step, s, U_full, reaction_xy, write)) : 0.0;
+    const Point P = summed(sim_, (*momentum_)(s.V));
     csv << "," << force << "," << P.x << "," << P.y;
     if (sim_.components == 3) csv << "," << P.z;
     impact_.observe({step, s.t, E.total(), E.kinetic, P}, st.active, force);
     if (penetration_) {
-      const double depth = (*penetration_)(U_full, s.t);
+      const double depth = largest(sim_, (*penetration_)(U_full, s.t));
       max_penetration_ = std::max(max_penetration_, depth);
       csv << "," << depth;
     }
   }
   if (data_in_t_) csv << "," << works.data;
   if (friction_) csv << "," << works.friction;
+  std::vector<double> probes;
   for (const auto& pr : sim_.probes)
-    for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) csv << "," << v;
+    for (double v : probe(sim_, pr, U_full, rate, reaction_xy)) probes.push_back(v);
+  summed(sim_, probes);
+  for (double v : probes) csv << "," << v;
   csv << "\n";
   csv_.end_rows();
 }

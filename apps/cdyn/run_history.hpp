@@ -64,6 +64,7 @@ class History {
   bool damped_;    // the column `dissipated`
   bool data_in_t_;  // the column `data_work`
   bool friction_;   // the column `friction_work`, and contact.csv's friction columns
+  bool writes_;    // the files: all but the first rank of a run on subdomains only take part in the sums
   CsvOutput csv_;
   std::optional<LinearMomentum> momentum_;
   std::optional<ContactHistory> contact_;

@@ -36,19 +36,20 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   // the back end and its processes (docs/distributed.md): rank 0 and the ranks serving it
   j["backend"] = sim.spec.solver.backend;
   j["ranks"] = petsc::size();
+  j["partition"] = sim.spec.solver.partition;  // "none", or the subdomains' ("slabs": each rank its cells)
   j["threads"] = sim.threads;
   j["blas_threads"] = sim.blas_threads > 0 ? nlohmann::ordered_json(sim.blas_threads) : nlohmann::ordered_json();
-  j["n_dofs"] = p.W->n_dofs();
-  j["n_free"] = p.n_free();
-  j["n_velocity"] = p.mass->n_velocity();
-  j["n_constraints"] = p.constrained.size();
+  j["n_dofs"] = sim.whole.dofs;
+  j["n_free"] = sim.whole.free;
+  j["n_velocity"] = sim.whole.velocity;
+  j["n_constraints"] = sim.whole.constraints;
   j["n_steps"] = r.steps_done;
   j["partial"] = r.partial;  // interrupted (Ctrl-C/SIGTERM) after n_steps of n_steps_asked
   j["n_steps_asked"] = sim.n_steps;
   j["resumed_at"] = r.resumed_at >= 0 ? nlohmann::ordered_json(r.resumed_at) : nlohmann::ordered_json();
   j["dt"] = sim.dt;
   j["T"] = r.state.t;
-  j["h"] = sim.mesh->h_max();
+  j["h"] = sim.whole.h;
   j["E0"] = r.E0;
   j["E_final"] = r.E_final;
   j["E_rel_drift"] = r.drift.rel();
@@ -77,10 +78,14 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
     j["impact"] = r.history.impact();
     j["max_penetration"] = r.history.max_penetration();  // the whole boundary against every obstacle
   }
-  if (sim.spec.output.wellposed) {
-    j["wellposed"] = wellposedness_summary(sim);
-  } else {
+  if (!sim.spec.output.wellposed) {
     j["wellposed"] = {{"beta", nullptr}, {"satisfied", nullptr}, {"not_computed", "output.wellposed = false"}};
+  } else if (sim.partition) {  // (β is a property of the whole mesh and its constraints)
+    j["wellposed"] = {{"beta", nullptr},
+                      {"satisfied", nullptr},
+                      {"not_computed", "a run on subdomains; cdyn wellposed on the scene computes it"}};
+  } else {
+    j["wellposed"] = wellposedness_summary(sim);
   }
   const SceneSpec::Units& units = sim.spec.units;
   j["units"] = units.length.empty() ? nlohmann::ordered_json()
@@ -127,7 +132,7 @@ void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, c
       "%.3f s on %d thread%s (%.3g s/step, %.2f QP iterations per step).\n  Energy J0 = %.10g, J(T) = %.10g, %s; max constraint "
       "violation %.2e.\n  Condition (12): %s.\n",
       sim.scene_name.c_str(), sim.model.c_str(), sim.pair.c_str(), sim.scheme_name.c_str(), solver.c_str(),
-      r.partial ? "\n  " : "", label.c_str(), p.W->n_dofs(), p.n_free(), static_cast<int>(p.constrained.size()),
+      r.partial ? "\n  " : "", label.c_str(), sim.whole.dofs, sim.whole.free, sim.whole.constraints,
       r.steps_done, sim.dt, r.state.t, wall, sim.threads, sim.threads == 1 ? "" : "s", wall / per,
       r.totals.qp_iterations / per, r.E0, r.E_final, energy,
       r.totals.max_violation, wellposedness_line(j["wellposed"]).c_str());

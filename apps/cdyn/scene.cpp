@@ -38,7 +38,7 @@ const std::set<std::string> kKnownKeys = {
     "damping.alpha",  "damping.beta",
     "solver.name",    "solver.tol",     "solver.max_iterations",
     "solver.condense", "solver.cg_iterations", "solver.free_block", "solver.linear", "solver.threads",
-    "solver.backend", "solver.pc",
+    "solver.backend", "solver.pc", "solver.partition",
     "exact.solution",
     "output.every",   "output.contact_every", "output.probes",  "output.fields",   "output.plots",
     "output.stress",  "output.wellposed",  "output.checkpoint_every",

@@ -342,6 +342,12 @@ void read_backend(const Scene& s, SceneSpec::Solver& v) {
   v.pc = s.string("solver.pc", "");
   if (v.backend == "native" && s.has("solver.pc"))
     throw InputError("solver.pc: the preconditioner of the petsc back end (set solver.backend = \"petsc\")");
+  v.partition = s.string("solver.partition", "none");
+  if (v.partition != "none" && v.partition != "slabs")
+    throw InputError("solver.partition: expected \"none\" or \"slabs\" (got '" + v.partition + "')");
+  if (v.partition != "none" && v.backend != "petsc")
+    throw InputError("solver.partition: the subdomains' step QPs are summed and solved on the petsc back end "
+                     "(set solver.backend = \"petsc\")");
   if (v.backend == "petsc")
     for (const char* key : {"solver.linear", "solver.cg_iterations", "solver.free_block"})
       if (s.has(key))
@@ -451,6 +457,22 @@ void read_output(const Scene& s, SceneSpec& spec) {
   spec.units = units(s);
 }
 
+// What a run on subdomains (solver.partition) does not do yet: refused by key rather
+// than done on one rank's cells only (docs/distributed.md, "Subdomains").
+void check_partition(const SceneSpec& spec) {
+  if (spec.solver.partition == "none") return;
+  const std::string why = " on subdomains (solver.partition = \"" + spec.solver.partition + "\")";
+  if (spec.physics.model != "membrane" && spec.physics.model != "elasticity")
+    throw InputError("solver.partition: a run" + why + " takes a membrane or an elastic body (physics.model = \"" +
+                     spec.physics.model + "\")");
+  if (spec.output.fields)
+    throw InputError("output.fields: a run" + why + " writes no field files yet; set output.fields = false");
+  if (spec.output.checkpoint_every > 0)
+    throw InputError("output.checkpoint_every: a run" + why + " makes no checkpoints yet");
+  for (const SceneSpec::Rigid& r : spec.obstacle.rigid)
+    if (r.friction != "none") throw InputError(r.friction_key + ": a run" + why + " takes no friction yet");
+}
+
 }  // namespace
 
 SceneSpec read_scene(const Scene& s) {
@@ -480,6 +502,7 @@ SceneSpec read_scene(const Scene& s) {
   read_boundary(s, spec);
   read_time_and_solver(s, spec);
   read_output(s, spec);
+  check_partition(spec);
   return spec;
 }
 

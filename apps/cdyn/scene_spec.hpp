@@ -117,6 +117,10 @@ struct SceneSpec {
     // on the ranks of mpirun, qp/petsc/petsc_step_solver.hpp); solver.pc: the
     // preconditioner of its Krylov solves (empty: the solver's default)
     std::string backend = "native", pc;
+    // solver.partition: "none" (rank 0 holds the whole problem, the other ranks a share of
+    // each step QP's rows) or "slabs" (each rank builds and steps the problem on its own
+    // slab of cells, partition.hpp)
+    std::string partition = "none";
     // solver.linear = "auto": the CG path or the factor chosen per problem at set-up
     // (simulation.cpp, cg_path_pays)
     bool linear_auto = false;

@@ -205,7 +205,12 @@ void build_problem(Simulation& sim) {
     sim.dirichlet_parts = {sim.mesh->part_index("right")};
     return;
   }
-  sim.mesh = std::make_unique<Mesh>(make_mesh(s));
+  if (s.solver.partition == "none") {
+    sim.mesh = std::make_unique<Mesh>(make_mesh(s));
+  } else {  // the problem on this rank's cells
+    sim.partition = std::make_unique<Partition>(slab_partition(make_mesh(s)));
+    sim.mesh = std::make_unique<Mesh>(sim.partition->sub.mesh);
+  }
   sim.pair = s.method.mass.name();
   if (s.physics.model != "elasticity") {
     const ScalarWaveData d = scalar_wave(*sim.mesh, s);
@@ -222,8 +227,11 @@ void build_problem(Simulation& sim) {
   sim.materials = cell_materials(*sim.mesh, d);
 }
 
+// The probes, each located in the whole mesh; on subdomains its cell is this rank's, or
+// −1, and its vertex too where this rank owns it (partition.hpp).
 void add_probes(Simulation& sim) {
-  const Mesh& mesh = *sim.mesh;
+  const Partition* part = sim.partition.get();
+  const Mesh& mesh = part ? part->whole : *sim.mesh;
   auto add = [&](const std::string& name, const std::vector<double>& c, const std::string& key) {
     if (static_cast<int>(c.size()) != mesh.dim)
       throw InputError(key + ": expected " + std::to_string(mesh.dim) + " coordinates");
@@ -231,6 +239,11 @@ void add_probes(Simulation& sim) {
     pr.where = locate(mesh, pr.at);
     if (pr.where.cell < 0) throw InputError(key + ": the point lies outside the mesh");
     pr.vertex = nearest_vertex(mesh, pr.at);
+    if (part) {
+      pr.where.cell = part->local_cell[pr.where.cell];
+      pr.vertex = part->local_vertex[pr.vertex];
+      if (pr.vertex >= 0 && !part->owns_vertex[pr.vertex]) pr.vertex = -1;
+    }
     sim.probes.push_back(pr);
   };
   for (const auto& [name, c] : sim.spec.output.probes) add(name, c, "output.probes." + name);
@@ -249,8 +262,10 @@ Mesh make_mesh(const SceneSpec& s) {
   });
 }
 
-// The step solver of solver.name on solver.backend.
-std::unique_ptr<StepSolver> make_solver(const SceneSpec::Solver& v) {
+// The step solver of solver.name on solver.backend; on subdomains, of this rank's share.
+std::unique_ptr<StepSolver> make_solver(const Simulation& sim) {
+  const SceneSpec::Solver& v = sim.spec.solver;
+  if (sim.partition) return petsc::make_petsc_subdomain_solver(sim.partition->in_whole, v.options, v.pc);
   if (v.backend == "petsc") return petsc::make_petsc_step_solver(v.name, v.options, v.pc);
   return make_step_solver(v.name, v.options);
 }
@@ -263,6 +278,13 @@ void check_backend(const Simulation& sim) {
     throw InputError("solver.backend: \"native\" runs on one process; under mpirun with more than one, set "
                      "solver.backend = \"petsc\"");
   if (v.backend != "petsc") return;
+  // (on subdomains the distributed pdas on CG alone: an explicit step matrix)
+  if (sim.partition && v.name != "pdas")
+    throw InputError("solver.name: a run on subdomains (solver.partition) solves its step QPs by pdas (got " +
+                     v.name + ")");
+  if (sim.partition && !sparse_mass(*sim.problem.mass))
+    throw InputError(sim.spec.method.key + ": with " + sim.pair + " the step is in saddle form (H^h continuous), "
+                     "which a run on subdomains (solver.partition) does not solve: no explicit step matrix");
   // (in saddle form the back end's pdas factorizes each reduced saddle system by MUMPS)
   if (!sparse_mass(*sim.problem.mass) && v.name != "pdas")
     throw InputError("solver.name: with " + sim.pair + " the step is in saddle form (H^h continuous), which the "
@@ -324,17 +346,19 @@ Simulation make_simulation(const SceneSpec& spec) {
   if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_path_pays(sim);  // (refused with petsc)
   // (the CG path's solves stop at the QP tolerance, above what the energy-exact
   // scheme's correction needs: auto takes the midpoint with its full-step
-  // reconstruction then, docs/performance.md)
-  sim.scheme_name = s.time.scheme != "auto" ? s.time.scheme
-                    : s.solver.options.pdas_cg_only ? "midpoint"
-                                                    : recommended_scheme(p);
+  // reconstruction then, docs/performance.md, and on subdomains, whose step QPs the
+  // ranks solve by CG)
+  sim.scheme_name = s.time.scheme != "auto"                           ? s.time.scheme
+                    : s.solver.options.pdas_cg_only || sim.partition ? "midpoint"
+                                                                     : recommended_scheme(p);
   // The full-step reconstruction's QP solved as the step's: by CG alone on that path.
   // On the petsc back end rank 0 solves it with the native pdas, by the same rule
   // (docs/distributed.md: there the factor of ZᵀAZ was rank 0's serial work), but not
-  // for the energy-exact scheme's corrections.
+  // for the energy-exact scheme's corrections.  On subdomains the ranks solve it together,
+  // by CG (the step solver's companion).
   sim.spec.time.parameters.reconstruct_by_cg =
       s.solver.options.pdas_cg_only ||
-      (s.solver.backend == "petsc" && sim.scheme_name != "discrete_gradient" && cg_path_pays(sim));
+      (s.solver.backend == "petsc" && sim.scheme_name != "discrete_gradient" && (sim.partition || cg_path_pays(sim)));
   sim.solver_name = s.solver.name;
   // (without a sparse M the step QP is in saddle form: no explicit S for CG alone)
   if (s.solver.options.pdas_cg_only && !sparse_mass(*p.mass))
@@ -343,13 +367,15 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.tol = s.solver.options.tol;
   check_backend(sim);
   with_scene_keys(s, [&] {
-    sim.solver = make_solver(s.solver);
+    if (sim.partition) number_unknowns(sim);
+    sim.whole = whole_sizes(sim);
+    sim.solver = make_solver(sim);
     sim.scheme = make_time_scheme(sim.scheme_name, p, *sim.solver, sim.dt, s.time.parameters);
   });
 
   // Initial state: U⁰ must lie in K̄^h; V⁰ from C V⁰ = B U̇⁰.
   sim.initial.U = initial_field(p, s.initial.u);
-  const double violation = p.max_violation(sim.initial.U);
+  const double violation = largest(sim, p.max_violation(sim.initial.U));
   if (violation > 1e-12) infeasible_initial_state(sim, violation);  // names initial.u or obstacle.normal
   sim.initial.V = initial_velocity(p, initial_field(p, s.initial.v));
   sim.initial.reaction = Eigen::VectorXd::Zero(p.n_free());

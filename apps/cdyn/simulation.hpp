@@ -14,6 +14,7 @@
 #include "cdyn/mesh/point_location.hpp"
 #include "cdyn/qp/step_solver.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
+#include "partition.hpp"
 #include "scene_spec.hpp"
 
 namespace cdyn::app {
@@ -21,8 +22,8 @@ namespace cdyn::app {
 struct Probe {
   std::string name;
   Point at;
-  CellPoint where;   // cell and reference point of `at`
-  int vertex = -1;   // nearest vertex (where λ lives)
+  CellPoint where;   // cell and reference point of `at` (on subdomains: −1 where another rank's)
+  int vertex = -1;   // nearest vertex, where λ lives (on subdomains: −1 where another rank owns it)
 };
 
 struct Simulation {
@@ -37,8 +38,11 @@ struct Simulation {
   // The wall time make_simulation took: the mesh, the assembly, the mass model, the step
   // matrix and the scheme's set-up (its factorizations wait for the first step).
   double setup_seconds = 0;
-  std::unique_ptr<Mesh> mesh;
+  std::unique_ptr<Mesh> mesh;  // the problem's: on subdomains, this rank's cells
   ConstrainedProblem problem;
+  ProblemSizes whole;  // the whole problem's (a run on subdomains holds a share)
+  // A run on subdomains (solver.partition): the whole mesh, the maps, the owners.
+  std::unique_ptr<Partition> partition;
   State initial;
   std::unique_ptr<StepSolver> solver;
   std::unique_ptr<TimeScheme> scheme;

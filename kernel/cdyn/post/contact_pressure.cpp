@@ -68,7 +68,7 @@ ContactPressure::ContactPressure(const ConstrainedProblem& p) : p_(p) {
   }
   std::sort(vertices_.begin(), vertices_.end(), [this](const Vertex& a, const Vertex& b) {
     const int oa = p_.contact_nodes[a.node].obstacle, ob = p_.contact_nodes[b.node].obstacle;
-    return oa != ob ? oa < ob : a.s < b.s;
+    return oa != ob ? oa < ob : a.s != b.s ? a.s < b.s : a.vertex < b.vertex;
   });
 }
 

@@ -30,7 +30,7 @@ class ContactPressure {
     int node;       // into ConstrainedProblem::contact_nodes
   };
 
-  // The constrained contact vertices of p, sorted by obstacle, then by s.
+  // The constrained contact vertices of p, sorted by obstacle, then by s, then by vertex.
   explicit ContactPressure(const ConstrainedProblem& p);
 
   const std::vector<Vertex>& vertices() const { return vertices_; }

@@ -51,6 +51,10 @@ class StepSolver {
   // kind (the ranks solve that QP together too; set_unknowns then names them); any
   // other returns nothing, and the scheme makes its own.
   virtual std::unique_ptr<StepSolver> make_companion(const QPOptions& /*options*/) const { return nullptr; }
+  // How many unknowns of the whole problem these of its QP (an active set) are: a
+  // share's solver counts those its rank owns and sums over the ranks (collective), so
+  // that a vertex two subdomains hold is counted once; any other, their number.
+  virtual int count_in_whole(const std::vector<int>& unknowns) const { return static_cast<int>(unknowns.size()); }
 };
 
 // name: one of step_solver_names(); anything else is an InputError.

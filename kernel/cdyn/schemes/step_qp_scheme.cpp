@@ -236,7 +236,7 @@ Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStat
 Eigen::VectorXd StepQPScheme::report_last(const Eigen::VectorXd& r, State& s, StepStats& stats) const {
   stats.qp_iterations = last_.iterations;
   stats.qp_seconds = last_.seconds;
-  stats.active = static_cast<int>(last_.active.size());
+  stats.active = solver_.count_in_whole(last_.active);
   stats.kkt_residual = last_.kkt_residual;
   stats.converged = last_.converged;
   if (!condensation_) {

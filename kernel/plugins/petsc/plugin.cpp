@@ -8,6 +8,7 @@ extern "C" __attribute__((visibility("default"))) const cdyn::petsc::PluginTable
   namespace s = cdyn::petsc::session;
   static const cdyn::petsc::PluginTable table{cdyn::petsc::kPluginVersion, s::start, s::rank, s::size, s::serve,
                                               s::finish, cdyn::petsc::new_petsc_step_solver,
-                                              cdyn::petsc::new_subdomain_step_solver, s::sum_over_ranks};
+                                              cdyn::petsc::new_subdomain_step_solver, s::every_rank_runs,
+                                              s::reduce_over_ranks, s::gather_on_first_rank};
   return &table;
 }

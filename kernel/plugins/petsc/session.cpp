@@ -76,9 +76,25 @@ void finish() {
 
 void every_rank_runs() { everyone_runs = true; }
 
-double sum_over_ranks(double x) {
-  if (started) MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  return x;
+void reduce_over_ranks(double* x, int n, int op) {
+  if (!started || n == 0) return;
+  const MPI_Op how = op == 1 ? MPI_MAX : op == 2 ? MPI_MIN : MPI_SUM;
+  MPI_Allreduce(MPI_IN_PLACE, x, n, MPI_DOUBLE, how, PETSC_COMM_WORLD);
+}
+
+std::vector<double> gather_on_first_rank(const std::vector<double>& x) {
+  if (!started) return x;
+  int n = static_cast<int>(x.size()), me = 0, p = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &me), MPI_Comm_size(PETSC_COMM_WORLD, &p);
+  std::vector<int> counts(me == 0 ? p : 0), first(me == 0 ? p : 0);
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  std::vector<double> all;
+  if (me == 0) {
+    for (int k = 1; k < p; ++k) first[k] = first[k - 1] + counts[k - 1];
+    all.resize(first[p - 1] + counts[p - 1]);
+  }
+  MPI_Gatherv(x.data(), n, MPI_DOUBLE, all.data(), counts.data(), first.data(), MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  return all;
 }
 
 }  // namespace cdyn::petsc::session

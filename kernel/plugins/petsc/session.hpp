@@ -10,6 +10,8 @@
 // (`cdyn run` alone, or mpirun -n 1) the same code runs with nobody to command.
 #pragma once
 
+#include <vector>
+
 namespace cdyn::petsc::session {
 
 // Initializes MPI and PETSc once (later calls do nothing); PETSc's own options still come
@@ -23,8 +25,11 @@ int size();  // 1 before start()
 int serve();
 // Rank 0 tells the others to quit; then PETSc and MPI are finalized (if started).
 void finish();
-// The sum of x over the ranks, on every rank (collective; x itself before start()).
-double sum_over_ranks(double x);
+// x[0..n) reduced over the ranks in place, on every rank: op 0 the sum, 1 the largest, 2
+// the smallest (backend.hpp's Reduction); collective, x itself before start().
+void reduce_over_ranks(double* x, int n, int op);
+// Every rank's x, rank after rank, on rank 0 (empty elsewhere); collective, x before start().
+std::vector<double> gather_on_first_rank(const std::vector<double>& x);
 // Every rank runs the program, none serves (the subdomains' solves,
 // subdomain_step_solver.hpp): finish() then sends no quit.
 void every_rank_runs();

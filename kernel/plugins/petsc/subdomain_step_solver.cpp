@@ -50,6 +50,13 @@ class SubdomainStepSolver : public StepSolver {
     number_unknowns();
   }
 
+  int count_in_whole(const std::vector<int>& unknowns) const override {
+    int mine = 0;
+    for (int i : unknowns) mine += petsc_of_.at(i) >= q_.first && petsc_of_.at(i) < q_.last;
+    MPI_Allreduce(MPI_IN_PLACE, &mine, 1, MPI_INT, MPI_SUM, world());
+    return mine;
+  }
+
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
     const auto start = std::chrono::steady_clock::now();
     // The input checks, agreed on by every rank before anything collective: a rank that

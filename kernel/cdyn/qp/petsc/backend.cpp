@@ -98,7 +98,26 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
   return std::unique_ptr<StepSolver>(plugin().make_solver(name, options, preconditioner));
 }
 
-double sum_over_ranks(double x) { return opened ? opened->sum_over_ranks(x) : x; }
+void every_rank_runs() { plugin().every_rank_runs(); }
+
+void reduce_over_ranks(std::vector<double>& x, Reduction op) {
+  if (opened) opened->reduce_over_ranks(x.data(), static_cast<int>(x.size()), static_cast<int>(op));
+}
+
+namespace {
+double reduced(double x, Reduction op) {
+  std::vector<double> v{x};
+  reduce_over_ranks(v, op);
+  return v[0];
+}
+}  // namespace
+
+double sum_over_ranks(double x) { return reduced(x, Reduction::sum); }
+double max_over_ranks(double x) { return reduced(x, Reduction::max); }
+
+std::vector<double> gather_on_first_rank(const std::vector<double>& x) {
+  return opened ? opened->gather_on_first_rank(x) : x;
+}
 
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
                                                         const std::string& preconditioner) {

@@ -63,8 +63,17 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
                                                         const std::string& preconditioner = "");
 
-// The sum of x over the ranks, on every rank: collective in a run whose ranks all run
-// the program (the subdomains'); x itself without the back end opened.
+// The collectives of a run whose ranks all run the program (the subdomains'), each
+// called by every rank; without the back end opened, x itself.
+// From now on every rank runs the program: none waits for rank 0's commands (serve()),
+// and rank 0 sends none at the end.  Before anything collective.
+void every_rank_runs();
+enum class Reduction { sum = 0, max = 1, min = 2 };
+// x reduced over the ranks in place, on every rank.
+void reduce_over_ranks(std::vector<double>& x, Reduction op);
 double sum_over_ranks(double x);
+double max_over_ranks(double x);
+// Every rank's x, rank after rank, on rank 0 (empty on the others).
+std::vector<double> gather_on_first_rank(const std::vector<double>& x);
 
 }  // namespace cdyn::petsc

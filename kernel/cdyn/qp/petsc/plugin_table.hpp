@@ -28,10 +28,13 @@ struct PluginTable {
   // a new StepSolver of one subdomain's share, every rank solving at once (the caller owns it)
   StepSolver* (*make_subdomain_solver)(const std::vector<int>& global, const std::string& name,
                                        const QPOptions& options, const std::string& preconditioner);
-  double (*sum_over_ranks)(double);  // collective
+  // collectives of a run whose every rank runs the program (the subdomains')
+  void (*every_rank_runs)();                          // from now on: rank 0 commands no one
+  void (*reduce_over_ranks)(double* x, int n, int op);  // op: Reduction, in place on every rank
+  std::vector<double> (*gather_on_first_rank)(const std::vector<double>&);  // the ranks' in order, on rank 0
 };
 
-constexpr int kPluginVersion = 2;
+constexpr int kPluginVersion = 3;
 
 }  // namespace cdyn::petsc
 

@@ -1,0 +1,104 @@
+// partition.cpp — a run on subdomains; see partition.hpp.
+#include "partition.hpp"
+
+#include <limits>
+
+#include "cdyn/fe/dirichlet.hpp"
+#include "cdyn/problems/subdomain.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
+#include "simulation.hpp"
+
+namespace cdyn::app {
+
+namespace {
+
+// The owner of each of n items (the lowest rank holding it) from the items this rank
+// holds: a mask of those it owns among them.
+std::vector<char> owned_items(const std::vector<int>& held, int n) {
+  std::vector<double> owner(n, std::numeric_limits<double>::infinity());
+  const double me = petsc::rank();
+  for (int g : held) owner[g] = me;
+  petsc::reduce_over_ranks(owner, petsc::Reduction::min);
+  std::vector<char> mine(held.size());
+  for (std::size_t i = 0; i < held.size(); ++i) mine[i] = owner[held[i]] == me;
+  return mine;
+}
+
+}  // namespace
+
+Partition slab_partition(Mesh whole) {
+  Partition part;
+  part.sub = sub_mesh(whole, slab_cells(whole, petsc::rank(), petsc::size()));
+  part.local_cell.assign(whole.n_cells(), -1);
+  for (std::size_t c = 0; c < part.sub.cell.size(); ++c) part.local_cell[part.sub.cell[c]] = static_cast<int>(c);
+  part.local_vertex.assign(whole.n_vertices(), -1);
+  for (std::size_t v = 0; v < part.sub.vertex.size(); ++v) part.local_vertex[part.sub.vertex[v]] = static_cast<int>(v);
+  part.owns_vertex = owned_items(part.sub.vertex, whole.n_vertices());
+  part.whole = std::move(whole);
+  return part;
+}
+
+void number_unknowns(Simulation& sim) {
+  Partition& part = *sim.partition;
+  const FESpace& W = *sim.problem.W;
+  // the whole problem's numbering: its space and Dirichlet dofs, nothing assembled
+  const FESpace W_whole(part.whole, W.element(), W.components());
+  const DirichletLift bc(W_whole, sim.dirichlet_parts, sim.dirichlet_components);
+  part.in_whole = unknowns_in_whole(W_whole, bc, sim.problem, part.sub);
+  part.whole_dofs = W_whole.n_dofs();
+  part.whole_free = static_cast<int>(bc.free_dofs().size());
+  part.owns_unknown = owned_items(part.in_whole, part.whole_free);
+}
+
+ProblemSizes whole_sizes(const Simulation& sim) {
+  const ConstrainedProblem& p = sim.problem;
+  if (!sim.partition)
+    return {p.W->n_dofs(), p.n_free(), p.mass->n_velocity(), static_cast<int>(p.constrained.size()), sim.mesh->h_max()};
+  const Partition& part = *sim.partition;
+  ProblemSizes n{part.whole_dofs, part.whole_free, 0, 0, part.whole.h_max()};
+  int constraints = 0;
+  for (int i : p.constrained) constraints += part.owns_unknown[i];
+  n.constraints = static_cast<int>(summed(sim, constraints));
+  // velocities per cell (H^h = P0) are each one rank's; those of a mass on W^h are the
+  // free unknowns; a continuous H^h takes the saddle form, refused on subdomains
+  const MassSpec& mass = sim.spec.method.mass;
+  n.velocity = !mass.is_pair() ? n.free : static_cast<int>(summed(sim, p.mass->n_velocity()));
+  return n;
+}
+
+double summed(const Simulation& sim, double x) { return sim.partition ? petsc::sum_over_ranks(x) : x; }
+
+double largest(const Simulation& sim, double x) { return sim.partition ? petsc::max_over_ranks(x) : x; }
+
+Energy summed(const Simulation& sim, const Energy& E) {
+  if (!sim.partition) return E;
+  std::vector<double> e{E.kinetic, E.potential};
+  petsc::reduce_over_ranks(e, petsc::Reduction::sum);
+  return {e[0], e[1]};
+}
+
+void summed(const Simulation& sim, std::vector<double>& x) {
+  if (sim.partition) petsc::reduce_over_ranks(x, petsc::Reduction::sum);
+}
+
+Point summed(const Simulation& sim, const Point& x) {
+  std::vector<double> v{x.x, x.y, x.z};
+  summed(sim, v);
+  return {v[0], v[1], v[2]};
+}
+
+bool writes_files(const Simulation& sim) { return !sim.partition || petsc::rank() == 0; }
+
+bool on_any_rank(const Simulation& sim, bool b) { return largest(sim, b ? 1.0 : 0.0) > 0.0; }
+
+Eigen::VectorXd owned_part(const Simulation& sim, const Eigen::VectorXd& x) {
+  if (!sim.partition || x.size() == 0) return x;
+  Eigen::VectorXd out = x;
+  for (Eigen::Index i = 0; i < out.size(); ++i)
+    if (!sim.partition->owns_unknown[i]) out[i] = 0.0;
+  return out;
+}
+
+bool owns_vertex(const Simulation& sim, int v) { return !sim.partition || sim.partition->owns_vertex[v]; }
+
+}  // namespace cdyn::app

@@ -1,0 +1,72 @@
+// partition.hpp — a run on subdomains (solver.partition, docs/distributed.md,
+// "Subdomains"): every rank builds the scene's problem on the sub-mesh of its own cells
+// (mesh/sub_mesh.hpp) and steps the scheme on it, the ranks' step QPs summed and solved
+// together (qp/petsc/backend.hpp's subdomain solver).
+//
+// What a run reports is then a sum or a maximum over the ranks.  Sums over cells — the
+// energies ½VᵀCV and ½UᵀAU − LᵀU, the momentum, the damping's work, the load's work —
+// are the ranks' sums added.  Sums over vertices — the active set, the contact force,
+// a moving obstacle's work — count a vertex that several subdomains hold once, by its
+// owner, the lowest rank holding it.  The penetration and the violation are maxima.  A
+// probe is evaluated by the rank holding its cell, its multiplier by the owner of its
+// vertex.  In a serial run every function here is the identity.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "cdyn/mesh/sub_mesh.hpp"
+#include "cdyn/schemes/time_scheme.hpp"
+
+namespace cdyn::app {
+
+struct Simulation;
+
+// A problem's sizes and its mesh's largest cell diameter, for the summary.
+struct ProblemSizes {
+  int dofs = 0, free = 0, velocity = 0, constraints = 0;
+  double h = 0.0;
+};
+
+struct Partition {
+  Mesh whole;   // the scene's mesh (every rank reads it)
+  SubMesh sub;  // this rank's cells (Simulation::mesh, the problem's, is a copy of sub.mesh)
+  std::vector<int> local_cell, local_vertex;  // of each of the whole mesh's: this rank's, −1
+  std::vector<char> owns_vertex;    // of this rank's vertices, those it owns
+  int whole_dofs = 0, whole_free = 0;  // the whole problem's dofs and free unknowns
+  std::vector<int> in_whole;        // the whole problem's free unknown of each of this rank's
+  std::vector<char> owns_unknown;   // of this rank's free unknowns, those it owns
+};
+
+// This rank's slab of the cells of `whole` (mesh/sub_mesh.hpp's slab_cells) and the maps
+// between the two meshes; the ownership is number_unknowns's, once the problem is built.
+Partition slab_partition(Mesh whole);
+
+// The whole problem's free unknown of each of sim.problem's (sim.partition set), who
+// owns it, and the whole problem's numbers of dofs and free unknowns (collective).
+void number_unknowns(Simulation& sim);
+
+// The whole problem's sizes (on subdomains, after number_unknowns; collective).
+ProblemSizes whole_sizes(const Simulation& sim);
+
+// The reductions over the ranks (identities in a serial run); collective.
+double summed(const Simulation& sim, double x);
+double largest(const Simulation& sim, double x);
+Energy summed(const Simulation& sim, const Energy& E);
+void summed(const Simulation& sim, std::vector<double>& x);
+bool on_any_rank(const Simulation& sim, bool b);
+
+// A vector on sim.problem's free unknowns with the unknowns other ranks own set to 0:
+// its sum over unknowns added over the ranks counts each of the whole problem's once.
+Eigen::VectorXd owned_part(const Simulation& sim, const Eigen::VectorXd& x);
+
+// A point's coordinates each summed over the ranks.
+Point summed(const Simulation& sim, const Point& x);
+
+// Whether this process writes the run's files: the first rank of a run on subdomains.
+bool writes_files(const Simulation& sim);
+
+// Whether this rank owns vertex v of sim.mesh (always, in a serial run).
+bool owns_vertex(const Simulation& sim, int v);
+
+}  // namespace cdyn::app
