@@ -1,6 +1,7 @@
 // partition.cpp — a run on subdomains; see partition.hpp.
 #include "partition.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "cdyn/fe/dirichlet.hpp"
@@ -24,16 +25,30 @@ std::vector<char> owned_items(const std::vector<int>& held, int n) {
   return mine;
 }
 
+// The cells of this rank in PT-Scotch's partition of the cells' dual graph.
+std::vector<int> graph_cells(const Mesh& mesh) {
+  const CellGraph g = cell_graph(mesh);
+  const std::vector<int> rank_of = petsc::partition_graph(g.offset, g.neighbour);
+  std::vector<int> cells;
+  for (int c = 0; c < mesh.n_cells(); ++c)
+    if (rank_of[c] == petsc::rank()) cells.push_back(c);
+  return cells;
+}
+
 }  // namespace
 
-Partition slab_partition(Mesh whole) {
+Partition make_partition(Mesh whole, const std::string& how) {
   Partition part;
-  part.sub = sub_mesh(whole, slab_cells(whole, petsc::rank(), petsc::size()));
+  part.sub = sub_mesh(whole, how == "graph" ? graph_cells(whole) : slab_cells(whole, petsc::rank(), petsc::size()));
   part.local_cell.assign(whole.n_cells(), -1);
   for (std::size_t c = 0; c < part.sub.cell.size(); ++c) part.local_cell[part.sub.cell[c]] = static_cast<int>(c);
   part.local_vertex.assign(whole.n_vertices(), -1);
   for (std::size_t v = 0; v < part.sub.vertex.size(); ++v) part.local_vertex[part.sub.vertex[v]] = static_cast<int>(v);
   part.owns_vertex = owned_items(part.sub.vertex, whole.n_vertices());
+  std::vector<double> holders(whole.n_vertices(), 0.0);
+  for (int v : part.sub.vertex) holders[v] = 1.0;
+  petsc::reduce_over_ranks(holders, petsc::Reduction::sum);
+  part.interface_vertices = static_cast<int>(std::count_if(holders.begin(), holders.end(), [](double h) { return h > 1; }));
   part.whole = std::move(whole);
   return part;
 }

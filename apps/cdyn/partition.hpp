@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "cdyn/mesh/sub_mesh.hpp"
@@ -34,13 +35,16 @@ struct Partition {
   std::vector<int> local_cell, local_vertex;  // of each of the whole mesh's: this rank's, −1
   std::vector<char> owns_vertex;    // of this rank's vertices, those it owns
   int whole_dofs = 0, whole_free = 0;  // the whole problem's dofs and free unknowns
+  int interface_vertices = 0;          // the vertices several ranks hold (what products exchange)
   std::vector<int> in_whole;        // the whole problem's free unknown of each of this rank's
   std::vector<char> owns_unknown;   // of this rank's free unknowns, those it owns
 };
 
-// This rank's slab of the cells of `whole` (mesh/sub_mesh.hpp's slab_cells) and the maps
+// This rank's cells of `whole` — its slab across x (`how` = "slabs", mesh/sub_mesh.hpp's
+// slab_cells) or its part of the cells' dual graph by PT-Scotch ("graph") — and the maps
 // between the two meshes; the ownership is number_unknowns's, once the problem is built.
-Partition slab_partition(Mesh whole);
+// Collective.
+Partition make_partition(Mesh whole, const std::string& how);
 
 // The whole problem's free unknown of each of sim.problem's (sim.partition set), who
 // owns it, and the whole problem's numbers of dofs and free unknowns (collective).

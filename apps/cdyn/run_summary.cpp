@@ -36,7 +36,8 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   // the back end and its processes (docs/distributed.md): rank 0 and the ranks serving it
   j["backend"] = sim.spec.solver.backend;
   j["ranks"] = petsc::size();
-  j["partition"] = sim.spec.solver.partition;  // "none", or the subdomains' ("slabs": each rank its cells)
+  j["partition"] = sim.spec.solver.partition;  // "none", or the subdomains' ("slabs", "graph": each rank its cells)
+  if (sim.partition) j["interface_vertices"] = sim.partition->interface_vertices;
   j["threads"] = sim.threads;
   j["blas_threads"] = sim.blas_threads > 0 ? nlohmann::ordered_json(sim.blas_threads) : nlohmann::ordered_json();
   j["n_dofs"] = sim.whole.dofs;

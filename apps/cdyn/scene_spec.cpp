@@ -343,8 +343,8 @@ void read_backend(const Scene& s, SceneSpec::Solver& v) {
   if (v.backend == "native" && s.has("solver.pc"))
     throw InputError("solver.pc: the preconditioner of the petsc back end (set solver.backend = \"petsc\")");
   v.partition = s.string("solver.partition", "none");
-  if (v.partition != "none" && v.partition != "slabs")
-    throw InputError("solver.partition: expected \"none\" or \"slabs\" (got '" + v.partition + "')");
+  if (v.partition != "none" && v.partition != "slabs" && v.partition != "graph")
+    throw InputError("solver.partition: expected \"none\", \"slabs\" or \"graph\" (got '" + v.partition + "')");
   if (v.partition != "none" && v.backend != "petsc")
     throw InputError("solver.partition: the subdomains' step QPs are summed and solved on the petsc back end "
                      "(set solver.backend = \"petsc\")");

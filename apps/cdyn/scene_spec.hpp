@@ -118,8 +118,8 @@ struct SceneSpec {
     // preconditioner of its Krylov solves (empty: the solver's default)
     std::string backend = "native", pc;
     // solver.partition: "none" (rank 0 holds the whole problem, the other ranks a share of
-    // each step QP's rows) or "slabs" (each rank builds and steps the problem on its own
-    // slab of cells, partition.hpp)
+    // each step QP's rows), "slabs" or "graph" (each rank builds and steps the problem on
+    // its own cells: a slab across x, or its part of PT-Scotch's partition; partition.hpp)
     std::string partition = "none";
     // solver.linear = "auto": the CG path or the factor chosen per problem at set-up
     // (simulation.cpp, cg_path_pays)

@@ -208,7 +208,7 @@ void build_problem(Simulation& sim) {
   if (s.solver.partition == "none") {
     sim.mesh = std::make_unique<Mesh>(make_mesh(s));
   } else {  // the problem on this rank's cells
-    sim.partition = std::make_unique<Partition>(slab_partition(make_mesh(s)));
+    sim.partition = std::make_unique<Partition>(make_partition(make_mesh(s), s.solver.partition));
     sim.mesh = std::make_unique<Mesh>(sim.partition->sub.mesh);
   }
   sim.pair = s.method.mass.name();

@@ -16,9 +16,10 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     -n 2, a saddle-form pair with TAO or with solver.pc, friction with snesvi, solver.pc
     on the native back end, solver.linear on the petsc one; a step QP that does not
     converge on two ranks: one line, exit status 3, no rank left waiting.
- 4. On subdomains (solver.partition = "slabs": every rank builds and steps the problem on
-    its own cells, the step QPs summed over the ranks): the membrane, the disk, the prism
-    and the cube in space on one process and on two give the native midpoint run's
+ 4. On subdomains (solver.partition = "slabs" or "graph": every rank builds and steps the
+    problem on its own cells, the step QPs summed over the ranks): the membrane, the
+    disk, the prism and the cube in space on one process and on two (slabs; on two also
+    PT-Scotch's parts of the cells' graph) give the native midpoint run's
     history to 1e-9 as above, contact.csv row for row (a vertex two ranks hold written
     once, its pressure by its whole share of Γ_C), and summary.json's energies, counts
     and impact; what such a run does not do yet is refused by key, one line, exit
@@ -163,33 +164,33 @@ def rows_of(out, name):
         return list(csv.DictReader(f))
 
 
-SLABS = {
+SUBDOMAIN_SCENES = {
     "membrane": ["", "time.T=0.3"],
     "disk": [os.path.join(src, "data/scenes/disk.toml"), "time.T=2e-3"],
     "prism_3d": [os.path.join(src, "data/scenes/prism_3d.toml"), "time.T=1.5"],
     "cube": cube,
 }
-for scene, (path, *sets) in SLABS.items():
+for scene, (path, *sets) in SUBDOMAIN_SCENES.items():
     sets = sets + ["solver.tol=1e-12"]
     summary0, native = run(scene + "-slabs-native", 0, path, sets + ["time.scheme=midpoint"])
     contact = os.path.exists(os.path.join(work, scene + "-slabs-native", "contact.csv"))
-    for ranks in (1, 2):
-        out = f"{scene}-slabs{ranks}"
-        summary, rows = run(out, ranks, path, sets + SUBDOMAINS)
+    for ranks, how in ((1, "slabs"), (2, "slabs"), (2, "graph")):
+        out = f"{scene}-{how}{ranks}"
+        summary, rows = run(out, ranks, path, sets + ["solver.backend=petsc", "solver.partition=" + how])
         d, key = largest_difference(native, rows)
         check(len(rows) == len(native) and d <= 1e-9,
-              f"{scene} on {ranks} subdomain(s) = native ({len(rows)} rows, largest difference {d:.1e} in {key})")
+              f"{scene} on {ranks} subdomain(s), {how} = native ({len(rows)} rows, largest difference {d:.1e} in {key})")
         same = all(summary[k] == summary0[k] for k in ("n_dofs", "n_free", "n_velocity", "n_constraints", "h",
                                                         "max_active", "scheme"))
         E = max(abs(summary[k] - summary0[k]) / abs(summary0["E_scale"]) for k in ("E0", "E_final", "E_abs_drift"))
-        check(same and E <= 1e-9 and summary["partition"] == "slabs",
-              f"{scene} on {ranks} subdomain(s): summary.json's sizes, counts and energies (to {E:.1e})")
+        check(same and E <= 1e-9 and summary["partition"] == how,
+              f"{scene} on {ranks} subdomain(s), {how}: summary.json's sizes, counts and energies (to {E:.1e})")
         if contact:
             a, b = rows_of(scene + "-slabs-native", "contact.csv"), rows_of(out, "contact.csv")
             d, key = largest_difference(a, b)
             order = [r["vertex"] for r in a] == [r["vertex"] for r in b]
             check(len(a) == len(b) and order and d <= 1e-9,
-                  f"{scene} on {ranks} subdomain(s): contact.csv, {len(b)} rows in the native order, to {d:.1e} in {key}")
+                  f"{scene} on {ranks} subdomain(s), {how}: contact.csv, {len(b)} rows in the native order, to {d:.1e} in {key}")
 
 SLAB_ERRORS = {
     "the native back end": (["solver.partition=slabs"], "solver.partition"),

@@ -130,3 +130,31 @@ TEST(SubMesh, SlabsPartitionTheCells) {
   }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), mesh.n_cells());
 }
+
+// The dual graph: every interior facet joins two cells, so the degrees sum to twice the
+// interior facets, (d + 1)·cells − boundary facets; the neighbours are mutual, sorted,
+// and share d vertices with the cell.
+void expect_dual_graph(const Mesh& mesh) {
+  const CellGraph g = cell_graph(mesh);
+  const int d = mesh.dim;
+  ASSERT_EQ(static_cast<int>(g.offset.size()), mesh.n_cells() + 1);
+  EXPECT_EQ(g.offset.back(), (d + 1) * mesh.n_cells() - static_cast<int>(mesh.boundary.size()));
+  for (int c = 0; c < mesh.n_cells(); ++c) {
+    const auto first = g.neighbour.begin() + g.offset[c], last = g.neighbour.begin() + g.offset[c + 1];
+    EXPECT_TRUE(std::is_sorted(first, last));
+    for (auto it = first; it != last; ++it) {
+      const int e = *it;
+      EXPECT_NE(e, c);
+      EXPECT_TRUE(std::binary_search(g.neighbour.begin() + g.offset[e], g.neighbour.begin() + g.offset[e + 1], c));
+      int common = 0;
+      for (int i = 0; i <= d; ++i)
+        for (int j = 0; j <= d; ++j) common += mesh.cells[c][i] == mesh.cells[e][j];
+      EXPECT_EQ(common, d);
+    }
+  }
+}
+
+TEST(SubMesh, TheCellsDualGraphJoinsCellsAcrossFacets) {
+  expect_dual_graph(unit_square_mesh(4));  // 32 triangles, 16 boundary edges: 80 / 2 interior
+  expect_dual_graph(unit_cube_mesh(2));
+}

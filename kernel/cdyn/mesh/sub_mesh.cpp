@@ -75,4 +75,29 @@ std::vector<int> slab_cells(const Mesh& mesh, int part, int parts) {
   return cells;
 }
 
+CellGraph cell_graph(const Mesh& mesh) {
+  const int d = mesh.dim;
+  // each facet with the cells that have it: sorted by facet, a shared facet's two
+  // cells come together
+  std::vector<std::pair<FacetKey, int>> facets;
+  facets.reserve(static_cast<std::size_t>(mesh.n_cells()) * (d + 1));
+  for (int c = 0; c < mesh.n_cells(); ++c)
+    for (int k = 0; k <= d; ++k) facets.emplace_back(cell_facet(mesh.cells[c], d, k), c);
+  std::sort(facets.begin(), facets.end());
+  std::vector<std::vector<int>> neighbours(mesh.n_cells());
+  for (std::size_t i = 0; i + 1 < facets.size(); ++i)
+    if (facets[i].first == facets[i + 1].first) {
+      neighbours[facets[i].second].push_back(facets[i + 1].second);
+      neighbours[facets[i + 1].second].push_back(facets[i].second);
+    }
+  CellGraph g;
+  g.offset.push_back(0);
+  for (std::vector<int>& n : neighbours) {
+    std::sort(n.begin(), n.end());
+    g.neighbour.insert(g.neighbour.end(), n.begin(), n.end());
+    g.offset.push_back(static_cast<int>(g.neighbour.size()));
+  }
+  return g;
+}
+
 }  // namespace cdyn

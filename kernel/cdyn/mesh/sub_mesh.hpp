@@ -40,4 +40,13 @@ SubMesh sub_mesh(const Mesh& mesh, const std::vector<int>& cells);
 // partitioner cuts fewer couplings on a general mesh).
 std::vector<int> slab_cells(const Mesh& mesh, int part, int parts);
 
+// The cells' dual graph: two cells are neighbours when they share a facet.  In CSR form:
+// the neighbours of cell c are neighbour[offset[c]] … neighbour[offset[c + 1] − 1], in
+// increasing order.  What a graph partitioner cuts (qp/petsc/backend.hpp's
+// partition_graph): a subdomain's interface is the facets between its cells and others'.
+struct CellGraph {
+  std::vector<int> offset, neighbour;
+};
+CellGraph cell_graph(const Mesh& mesh);
+
 }  // namespace cdyn

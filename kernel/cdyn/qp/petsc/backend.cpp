@@ -119,6 +119,11 @@ std::vector<double> gather_on_first_rank(const std::vector<double>& x) {
   return opened ? opened->gather_on_first_rank(x) : x;
 }
 
+std::vector<int> partition_graph(const std::vector<int>& offset, const std::vector<int>& neighbour) {
+  if (!opened) return std::vector<int>(offset.size() - 1, 0);
+  return opened->partition_graph(offset, neighbour);
+}
+
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
                                                         const std::string& preconditioner) {
   return std::unique_ptr<StepSolver>(plugin().make_subdomain_solver(global, "pdas", options, preconditioner));

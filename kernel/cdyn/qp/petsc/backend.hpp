@@ -75,5 +75,9 @@ double sum_over_ranks(double x);
 double max_over_ranks(double x);
 // Every rank's x, rank after rank, on rank 0 (empty on the others).
 std::vector<double> gather_on_first_rank(const std::vector<double>& x);
+// The rank of each vertex of a graph given whole on every rank (the neighbours of v:
+// neighbour[offset[v]] … neighbour[offset[v + 1] − 1]), by PT-Scotch: parts of about
+// equal size with few cut edges, the same on every rank (all 0 without the back end).
+std::vector<int> partition_graph(const std::vector<int>& offset, const std::vector<int>& neighbour);
 
 }  // namespace cdyn::petsc

@@ -32,6 +32,8 @@ struct PluginTable {
   void (*every_rank_runs)();                          // from now on: rank 0 commands no one
   void (*reduce_over_ranks)(double* x, int n, int op);  // op: Reduction, in place on every rank
   std::vector<double> (*gather_on_first_rank)(const std::vector<double>&);  // the ranks' in order, on rank 0
+  // the rank of each vertex of a graph (offsets, neighbours), PT-Scotch's; collective
+  std::vector<int> (*partition_graph)(const std::vector<int>&, const std::vector<int>&);
 };
 
 constexpr int kPluginVersion = 3;
