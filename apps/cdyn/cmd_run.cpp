@@ -238,15 +238,29 @@ int cmd_run(const RunOptions& opt) {
   };
   // The field series: step 0, every output.every steps and the last step.  Its cost
   // is measured apart and left out of wall_s, which is the cost of the method.
+  // On subdomains every rank makes its arrays and the first writes them on the whole mesh.
+  const bool with_fields = sim.spec.output.fields;
   std::optional<FieldsWriter> fields;
-  if (sim.spec.output.fields) fields.emplace(out, *sim.mesh, p);
+  if (with_fields && !sim.partition) fields.emplace(out, *sim.mesh, p);
+  if (with_fields && sim.partition && writes) fields.emplace(out, sim.partition->whole);
   if (fields && resume) fields->continue_series(resume->frames, resume->step);
   const DerivedFields derived(sim);  // σ, ε, von Mises, contact pressure, regions
   double fields_seconds = 0.0;       // in this process
   auto write_fields = [&](int step) {
     const auto tf = Clock::now();
     const Eigen::VectorXd U_full = p.full(s.U);
-    fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy, &s));
+    if (!sim.partition) {
+      fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy, &s));
+    } else {
+      ExtraFields arrays = derived(U_full, force_xy, &s);
+      const std::vector<FieldArray> state = state_arrays(*sim.mesh, p, U_full, rate, force_xy);
+      arrays.point.insert(arrays.point.begin(), state.begin(), state.end());
+      ExtraFields whole = gathered_on_first_rank(sim, arrays);
+      if (fields) {
+        derived.add_vertex_stress(sim.partition->whole, whole);
+        fields->write(step, s.t, whole);
+      }
+    }
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();
@@ -271,7 +285,7 @@ int cmd_run(const RunOptions& opt) {
   };
   if (!resume) {
     record(0, StepStats{}, 0.0, E_initial);
-    if (fields) write_fields(0);
+    if (with_fields) write_fields(0);
   }
 
   const bool show_progress = !opt.quiet && writes && isatty(STDERR_FILENO);
@@ -321,7 +335,7 @@ int cmd_run(const RunOptions& opt) {
     add_data_work(st, t_old, U_old);
     record(n, st, step_seconds, E);
     steps_done = n;
-    if (fields && (n % sim.output_every == 0 || n == sim.n_steps)) write_fields(n);
+    if (with_fields && (n % sim.output_every == 0 || n == sim.n_steps)) write_fields(n);
     if (checkpoint_every > 0 && n % checkpoint_every == 0 && n < sim.n_steps) checkpoint(n);
     if (show_progress && (n % 10 == 0 || n == sim.n_steps))
       progress(n, sim.n_steps, s.t, drift.rel(), st.active, seconds_since(t0), n - first + 1);
@@ -331,7 +345,7 @@ int cmd_run(const RunOptions& opt) {
   // the last state's field file, which is no frame of the series).  Complete: nothing
   // left to resume.
   if (partial && checkpoint_every > 0 && steps_done > last_checkpoint) checkpoint(steps_done);
-  if (partial && fields && steps_done % sim.output_every != 0) write_fields(steps_done);  // the last state computed
+  if (partial && with_fields && steps_done % sim.output_every != 0) write_fields(steps_done);  // the last state computed
   if (!partial && writes) std::filesystem::remove_all(checkpoint_dir(out), ec);
   totals = totals_now();
   if (show_progress) std::fprintf(stderr, "\n");

@@ -26,13 +26,7 @@ ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::pat
                                const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
     : sim_(sim), mesh_(*sim.mesh), problem_(sim.problem), contact_(sim.problem), csv_(file, journal, resume) {
   friction_ = !problem_.friction.empty();
-  if (sim.partition) {  // a vertex's share of Γ_C: its facets' on every rank
-    const SubMesh& sub = sim.partition->sub;
-    std::vector<double> w(sim.partition->whole.n_vertices(), 0.0);
-    for (const ContactPressure::Vertex& c : contact_.vertices()) w[sub.vertex[c.vertex]] += c.weight;
-    summed(sim, w);
-    for (const ContactPressure::Vertex& c : contact_.vertices()) whole_weight_.push_back(w[sub.vertex[c.vertex]]);
-  }
+  if (sim.partition) whole_weight_ = whole_contact_weights(sim, contact_);
   friction_of_.assign(mesh_.n_vertices(), -1);
   for (std::size_t k = 0; k < problem_.friction.size(); ++k)
     friction_of_[problem_.contact_nodes[problem_.friction[k].node].vertex] = static_cast<int>(k);

@@ -27,10 +27,35 @@ std::vector<FieldArray> stress_arrays(const std::vector<StressState>& states) {
   return {std::move(sigma), std::move(epsilon), std::move(vm)};
 }
 
+// The cell states of "sigma" and "epsilon" arrays (9 components, row by row).
+std::vector<StressState> stress_states(const FieldArray& sigma, const FieldArray& epsilon) {
+  auto tensor = [](const double* a) { return SymmetricTensor{a[0], a[4], a[8], a[1], a[2], a[5]}; };
+  std::vector<StressState> out(sigma.values.size() / 9);
+  for (std::size_t c = 0; c < out.size(); ++c) {
+    out[c].sigma = tensor(&sigma.values[9 * c]);
+    out[c].epsilon = tensor(&epsilon.values[9 * c]);
+  }
+  return out;
+}
+
+const FieldArray& named(const std::vector<FieldArray>& arrays, const std::string& name) {
+  return *std::find_if(arrays.begin(), arrays.end(), [&](const FieldArray& a) { return a.name == name; });
+}
+
 }  // namespace
 
 DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
-  if (sim.components > 1 && sim.has_obstacle) contact_.emplace(sim.problem);
+  if (sim.components > 1 && sim.has_obstacle) {
+    contact_.emplace(sim.problem);
+    weight_ = whole_contact_weights(sim, *contact_);
+  }
+}
+
+void DerivedFields::add_vertex_stress(const Mesh& whole, ExtraFields& gathered) const {
+  if (sim_.components == 1 || !sim_.spec.output.stress) return;
+  const std::vector<StressState> cells = stress_states(named(gathered.cell, "sigma"), named(gathered.cell, "epsilon"));
+  std::vector<FieldArray> vertex = stress_arrays(vertex_stress(whole, cells));
+  gathered.point.insert(gathered.point.begin() + 3, vertex.begin(), vertex.end());
 }
 
 ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
@@ -41,13 +66,15 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
     const std::vector<StressState> cells =
         cell_stress(*sim_.problem.W, U_full, sim_.materials.lambda, sim_.materials.mu);
     out.cell = stress_arrays(cells);
-    out.point = stress_arrays(vertex_stress(mesh, cells));
+    if (!sim_.partition) out.point = stress_arrays(vertex_stress(mesh, cells));
   }
   if (contact_) {
     FieldArray pressure{"contact_pressure", 1, std::vector<double>(mesh.n_vertices(), 0.0)};
+    const std::vector<ContactPressure::Vertex>& vertices = contact_->vertices();
     if (reaction_xy.size() > 0)
-      for (const ContactPressure::Vertex& a : contact_->vertices())
-        pressure.values[a.vertex] = contact_->pressure(reaction_xy, a);
+      for (std::size_t i = 0; i < vertices.size(); ++i)
+        pressure.values[vertices[i].vertex] =
+            weight_[i] > 0.0 ? contact_->normal_force(reaction_xy, vertices[i]) / weight_[i] : 0.0;
     out.point.push_back(std::move(pressure));
   }
   const ConstrainedProblem& p = sim_.problem;

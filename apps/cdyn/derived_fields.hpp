@@ -33,12 +33,20 @@ class DerivedFields {
   // The arrays of the state U_full (all dofs of W^h) with the step's reaction in (x, y)
   // (post/contact_force.hpp's reaction_xy; empty: no reaction yet).
   // `state`: the friction arrays' source (its reaction, slip and status).
+  // On subdomains (partition.hpp) the vertex arrays of this rank's vertices, but for
+  // the vertex stress, which needs the neighbouring ranks' cells: see below.
   ExtraFields operator()(const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
                          const State* state = nullptr) const;
+
+  // A run on subdomains: the vertex averages of σ, ε (and von Mises of the averaged σ)
+  // from the cell arrays gathered on the whole mesh, inserted after u, v and lambda, as
+  // operator() places them in a serial run.
+  void add_vertex_stress(const Mesh& whole, ExtraFields& gathered) const;
 
  private:
   const Simulation& sim_;
   std::optional<ContactPressure> contact_;
+  std::vector<double> weight_;  // w(a) of contact_'s vertices over the whole Γ_C
 };
 
 }  // namespace cdyn::app

@@ -114,6 +114,60 @@ Eigen::VectorXd owned_part(const Simulation& sim, const Eigen::VectorXd& x) {
   return out;
 }
 
+std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPressure& contact) {
+  std::vector<double> out;
+  for (const ContactPressure::Vertex& c : contact.vertices()) out.push_back(c.weight);
+  if (!sim.partition) return out;
+  const SubMesh& sub = sim.partition->sub;
+  std::vector<double> w(sim.partition->whole.n_vertices(), 0.0);
+  for (const ContactPressure::Vertex& c : contact.vertices()) w[sub.vertex[c.vertex]] += c.weight;
+  summed(sim, w);
+  out.clear();
+  for (const ContactPressure::Vertex& c : contact.vertices()) out.push_back(w[sub.vertex[c.vertex]]);
+  return out;
+}
+
+namespace {
+
+// The arrays' tuples of the listed items (`mine`: those this rank sends, all when empty),
+// each after its index in the whole (`whole_of`), gathered on the first rank and placed
+// at their indices among n items.
+std::vector<FieldArray> gathered(const std::vector<FieldArray>& arrays, const std::vector<int>& whole_of,
+                                 const std::vector<char>& mine, int n) {
+  int width = 1;  // the index, then every array's components
+  for (const FieldArray& a : arrays) width += a.components;
+  std::vector<double> sent;
+  for (std::size_t i = 0; i < whole_of.size(); ++i) {
+    if (!mine.empty() && !mine[i]) continue;
+    sent.push_back(whole_of[i]);
+    for (const FieldArray& a : arrays)
+      sent.insert(sent.end(), a.values.begin() + i * a.components, a.values.begin() + (i + 1) * a.components);
+  }
+  const std::vector<double> all = petsc::gather_on_first_rank(sent);
+  std::vector<FieldArray> out;
+  for (const FieldArray& a : arrays)
+    out.push_back({a.name, a.components, std::vector<double>(static_cast<std::size_t>(n) * a.components, 0.0)});
+  for (std::size_t k = 0; k < all.size(); k += width) {
+    const std::size_t item = static_cast<std::size_t>(all[k]);
+    std::size_t at = k + 1;
+    for (FieldArray& a : out) {
+      std::copy(all.begin() + at, all.begin() + at + a.components, a.values.begin() + item * a.components);
+      at += a.components;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+ExtraFields gathered_on_first_rank(const Simulation& sim, const ExtraFields& local) {
+  const Partition& part = *sim.partition;
+  ExtraFields whole{gathered(local.point, part.sub.vertex, part.owns_vertex, part.whole.n_vertices()),
+                    gathered(local.cell, part.sub.cell, {}, part.whole.n_cells())};
+  if (petsc::rank() != 0) return {};
+  return whole;
+}
+
 bool owns_vertex(const Simulation& sim, int v) { return !sim.partition || sim.partition->owns_vertex[v]; }
 
 }  // namespace cdyn::app

@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "cdyn/fields_output.hpp"
 #include "cdyn/mesh/sub_mesh.hpp"
+#include "cdyn/post/contact_pressure.hpp"
 #include "cdyn/schemes/time_scheme.hpp"
 
 namespace cdyn::app {
@@ -69,6 +71,16 @@ Point summed(const Simulation& sim, const Point& x);
 
 // Whether this process writes the run's files: the first rank of a run on subdomains.
 bool writes_files(const Simulation& sim);
+
+// w(a) = ∫_{Γ_C} φ_a ds of each of contact.vertices() (built on sim.problem) over the
+// whole Γ_C: on subdomains the sum of the ranks' shares, the facets being each one
+// rank's (collective).
+std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPressure& contact);
+
+// The field arrays of this rank's vertices and cells placed on the whole mesh, on the
+// first rank (nothing on the others): a vertex's values from its owner, a cell's from
+// its rank (collective).
+ExtraFields gathered_on_first_rank(const Simulation& sim, const ExtraFields& local);
 
 // Whether this rank owns vertex v of sim.mesh (always, in a serial run).
 bool owns_vertex(const Simulation& sim, int v);

@@ -65,8 +65,35 @@ void remove_fields(const std::filesystem::path& out) {
   for (const auto& path : old) std::filesystem::remove(path, ec);
 }
 
+std::vector<FieldArray> state_arrays(const Mesh& mesh, const ConstrainedProblem& problem, const Eigen::VectorXd& U_full,
+                                     const Eigen::VectorXd& rate_full, const Eigen::VectorXd& reaction_xy) {
+  const FESpace& W = *problem.W;
+  const int nv = mesh.n_vertices(), n_comp = W.components();
+  const int width = n_comp == 1 ? 1 : 3;  // ParaView's vectors have 3 components
+
+  // Vertex values: scalar dof v of P1, P1+ and P2 is vertex v (fe/fe_space.hpp).
+  const std::vector<double> zeros(static_cast<std::size_t>(width) * nv, 0.0);
+  FieldArray u{"u", width, zeros}, v{"v", width, zeros}, lambda{"lambda", width, zeros};
+  for (int vertex = 0; vertex < nv; ++vertex)
+    for (int k = 0; k < n_comp; ++k) {
+      const int dof = W.vertex_dof(vertex, k), at = width * vertex + k;
+      u.values[at] = U_full[dof];
+      v.values[at] = rate_full[dof];
+    }
+  for (int vertex = 0; vertex < nv; ++vertex) {
+    const Point lam = vertex_multiplier(problem, reaction_xy, vertex);
+    const double c[3] = {lam.x, lam.y, lam.z};
+    for (int k = 0; k < n_comp; ++k) lambda.values[width * vertex + k] = c[k];
+  }
+  return {std::move(u), std::move(v), std::move(lambda)};
+}
+
 FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, const ConstrainedProblem& problem)
-    : out_(out), mesh_(mesh), problem_(problem) {
+    : FieldsWriter(out, mesh) {
+  problem_ = &problem;
+}
+
+FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh) : out_(out), mesh_(mesh) {
   std::error_code ec;
   std::filesystem::create_directories(out_ / "fields", ec);
   if (ec) throw InputError((out_ / "fields").string() + ": cannot create the directory (" + ec.message() + ")");
@@ -95,36 +122,22 @@ FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, c
 
 void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
                          const Eigen::VectorXd& reaction_xy, const ExtraFields& extra) {
-  const FESpace& W = *problem_.W;
-  const int nv = mesh_.n_vertices(), n_comp = W.components();
-  const int width = n_comp == 1 ? 1 : 3;  // ParaView's vectors have 3 components
+  ExtraFields arrays{state_arrays(mesh_, *problem_, U_full, rate_full, reaction_xy), extra.cell};
+  arrays.point.insert(arrays.point.end(), extra.point.begin(), extra.point.end());
+  write(step, t, arrays);
+}
 
-  // Vertex values: scalar dof v of P1, P1+ and P2 is vertex v (fe/fe_space.hpp).
-  std::vector<double> u(static_cast<std::size_t>(width) * nv, 0.0), v(u.size(), 0.0), lambda(u.size(), 0.0);
-  for (int vertex = 0; vertex < nv; ++vertex)
-    for (int k = 0; k < n_comp; ++k) {
-      const int dof = W.vertex_dof(vertex, k), at = width * vertex + k;
-      u[at] = U_full[dof];
-      v[at] = rate_full[dof];
-    }
-  for (int vertex = 0; vertex < nv; ++vertex) {
-    const Point lam = vertex_multiplier(problem_, reaction_xy, vertex);
-    const double c[3] = {lam.x, lam.y, lam.z};
-    for (int k = 0; k < n_comp; ++k) lambda[width * vertex + k] = c[k];
-  }
-
-  // The arrays in the order of their blocks: u, v, lambda, the extra point arrays, the
-  // extra cell arrays; then the geometry.
+void FieldsWriter::write(int step, double t, const ExtraFields& arrays) {
+  const int nv = mesh_.n_vertices();
+  // The arrays in the order of their blocks: the point arrays (u, v, lambda first), the
+  // cell arrays; then the geometry.
   struct Entry {
     const std::string* name;
     int components;
     const std::vector<double>* values;
     std::uint64_t offset;
   };
-  const std::string base_names[] = {"u", "v", "lambda"};
-  std::vector<Entry> point_entries{{&base_names[0], width, &u, 0}, {&base_names[1], width, &v, 0},
-                                   {&base_names[2], width, &lambda, 0}},
-      cell_entries;
+  std::vector<Entry> point_entries, cell_entries;
   auto add = [](std::vector<Entry>& to, const std::vector<FieldArray>& arrays, std::size_t tuples, const char* where) {
     for (const FieldArray& a : arrays) {
       if (a.components < 1 || a.values.size() != tuples * static_cast<std::size_t>(a.components))
@@ -134,8 +147,8 @@ void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, cons
       to.push_back({&a.name, a.components, &a.values, 0});
     }
   };
-  add(point_entries, extra.point, static_cast<std::size_t>(nv), "point");
-  add(cell_entries, extra.cell, static_cast<std::size_t>(mesh_.n_cells()), "cell");
+  add(point_entries, arrays.point, static_cast<std::size_t>(nv), "point");
+  add(cell_entries, arrays.cell, static_cast<std::size_t>(mesh_.n_cells()), "cell");
   std::string blocks;
   std::uint64_t offset = 0;
   for (std::vector<Entry>* list : {&point_entries, &cell_entries})

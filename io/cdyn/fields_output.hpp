@@ -47,6 +47,12 @@ struct ExtraFields {
   std::vector<FieldArray> point, cell;
 };
 
+// u, v and lambda at the vertices of `mesh` (the mesh of problem.W) — the arrays every
+// file begins with: U_full and rate_full on all dofs of W^h, reaction_xy the step's
+// reaction on its free dofs in (x, y) components (empty: none yet).
+std::vector<FieldArray> state_arrays(const Mesh& mesh, const ConstrainedProblem& problem, const Eigen::VectorXd& U_full,
+                                     const Eigen::VectorXd& rate_full, const Eigen::VectorXd& reaction_xy);
+
 // Removes the fields of an earlier run in `out` (fields.pvd, fields/step_*.vtu), so
 // that a directory never mixes two runs' files.
 void remove_fields(const std::filesystem::path& out);
@@ -55,6 +61,9 @@ class FieldsWriter {
  public:
   // Writes into out/fields/ (created) and out/fields.pvd.
   FieldsWriter(const std::filesystem::path& out, const Mesh& mesh, const ConstrainedProblem& problem);
+  // The same for arrays made elsewhere (the write below taking all of them): a run on
+  // subdomains writes its ranks' arrays gathered on the whole mesh.
+  FieldsWriter(const std::filesystem::path& out, const Mesh& mesh);
 
   // Writes fields/step_NNNNNN.vtu for the state at `step`: U_full and rate_full are
   // coefficient vectors on all dofs of W^h, reaction_xy the step's reaction on its free
@@ -62,6 +71,8 @@ class FieldsWriter {
   // `extra`: more arrays (InputError if one has not n_vertices (n_cells) tuples).
   void write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
              const Eigen::VectorXd& reaction_xy, const ExtraFields& extra = {});
+  // The same with every array given (state_arrays' first among the point arrays).
+  void write(int step, double t, const ExtraFields& arrays);
 
   // Writes fields.pvd, the time series of the files written so far.
   void finish() const;
@@ -82,7 +93,7 @@ class FieldsWriter {
  private:
   std::filesystem::path out_;
   const Mesh& mesh_;
-  const ConstrainedProblem& problem_;
+  const ConstrainedProblem* problem_ = nullptr;  // for the write from a state
   std::string geometry_blocks_;  // points, connectivity, offsets, types: the same every frame
   std::vector<Frame> frames_;
 };
