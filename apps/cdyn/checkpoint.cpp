@@ -96,7 +96,11 @@ const std::vector<double>& numbers(const CheckpointRecords& r, const std::string
 
 std::string scene_fingerprint(const std::string& scene_text) { return hex(fnv1a(scene_text)); }
 
-void write_checkpoint(const std::filesystem::path& out, const RunCheckpoint& c) {
+std::filesystem::path checkpoint_file(const std::filesystem::path& out, int rank) {
+  return checkpoint_dir(out) / (rank == 0 ? std::string("state.bin") : "state.rank" + std::to_string(rank) + ".bin");
+}
+
+void write_checkpoint(const std::filesystem::path& out, const RunCheckpoint& c, int rank) {
   CheckpointRecords r;
   r.texts["scene"] = c.scene_hash;
   r.integers["step"] = {c.step};
@@ -117,12 +121,13 @@ void write_checkpoint(const std::filesystem::path& out, const RunCheckpoint& c) 
     r.integers["frames.step"].push_back(step);
     r.numbers["frames.t"].push_back(t);
   }
+  if (!c.cells.empty()) r.integers["cells"] = {c.cells.begin(), c.cells.end()};
   std::filesystem::create_directories(checkpoint_dir(out));
-  write_checkpoint_file(checkpoint_dir(out) / "state.bin", r);
+  write_checkpoint_file(checkpoint_file(out, rank), r);
 }
 
-RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::string& scene_text) {
-  const std::filesystem::path file = checkpoint_dir(out) / "state.bin";
+RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::string& scene_text, int rank) {
+  const std::filesystem::path file = checkpoint_file(out, rank);
   if (!std::filesystem::exists(file))
     throw InputError(file.string() + ": no checkpoint to resume from (the run had output.checkpoint_every = 0, "
                                      "or it completed)");
@@ -170,6 +175,8 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::strin
   if (steps != r.integers.end() && times != r.numbers.end() && steps->second.size() == times->second.size())
     for (std::size_t k = 0; k < steps->second.size(); ++k)
       c.frames.emplace_back(static_cast<int>(steps->second[k]), times->second[k]);
+  if (const auto cells = r.integers.find("cells"); cells != r.integers.end())
+    c.cells.assign(cells->second.begin(), cells->second.end());
   return c;
 }
 

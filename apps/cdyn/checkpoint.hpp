@@ -7,6 +7,10 @@
 //   DIR/checkpoint/history.csv   the journal of history.csv's rows (io/cdyn/journal.hpp),
 //   DIR/checkpoint/contact.csv   and of contact.csv's, trusted up to the marks in state.bin
 //
+// A run on subdomains (partition.hpp) writes one state file a rank, state.bin for rank 0
+// and state.rankR.bin for rank R ≥ 1, each with the rank's share of the state and the
+// list of its cells: a resumed run must deal the cells out as the stopped one did.
+//
 // The state (t, U, V, the last reaction), the scheme's memory (warm starts, U^{n−1},
 // ..., schemes/scheme_memory.hpp), the totals and monitors of summary.json, the
 // displacement rate of the last step, the field files written, and the fingerprint of
@@ -35,19 +39,23 @@ struct RunCheckpoint {
   HistoryMemory history;
   Eigen::VectorXd rate;                          // (Uⁿ − Uⁿ⁻¹)/dt on all dofs of W^h
   std::vector<std::pair<int, double>> frames;    // the field files written: step, t
+  std::vector<int> cells;                        // on subdomains: the rank's cells (empty otherwise)
 };
 
 // The folder of the checkpoint in a run directory.
 inline std::filesystem::path checkpoint_dir(const std::filesystem::path& out) { return out / "checkpoint"; }
 
-// Writes c as the checkpoint of the run in `out` (its journals must have been flushed:
-// History::checkpoint()).
-void write_checkpoint(const std::filesystem::path& out, const RunCheckpoint& c);
+// The state file of rank `rank` of a run (0 for a serial run).
+std::filesystem::path checkpoint_file(const std::filesystem::path& out, int rank = 0);
 
-// The checkpoint of the run in `out`, for the scene whose scene.toml text is
-// `scene_text`.  InputError naming the file: none, corrupt, another version, or written
-// for another scene.
-RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::string& scene_text);
+// Writes c as the checkpoint of the run in `out`, rank `rank`'s file (its journals must
+// have been flushed: History::checkpoint()).
+void write_checkpoint(const std::filesystem::path& out, const RunCheckpoint& c, int rank = 0);
+
+// The checkpoint of the run in `out` (rank `rank`'s file), for the scene whose scene.toml
+// text is `scene_text`.  InputError naming the file: none, corrupt, another version, or
+// written for another scene.
+RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::string& scene_text, int rank = 0);
 
 // The fingerprint of a scene.toml text.
 std::string scene_fingerprint(const std::string& scene_text);

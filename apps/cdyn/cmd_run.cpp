@@ -34,6 +34,7 @@
 #include "cdyn/fields_output.hpp"
 #include "cdyn/post/contact_force.hpp"
 #include "cdyn/problems/data_work.hpp"
+#include "cdyn/qp/petsc/backend.hpp"
 #include "checkpoint.hpp"
 #include "commands.hpp"
 #include "derived_fields.hpp"
@@ -130,25 +131,51 @@ Start fresh_start(const RunOptions& opt) {
 
 // `--resume DIR`: the scene is DIR/scene.toml as the run wrote it, and the checkpoint
 // must have been written for it (checkpoint.hpp).
-Start resumed_start(const RunOptions& opt) {
+Start resumed_start(const RunOptions& opt, int rank) {
   if (!opt.scene.empty() || !opt.scene_text.empty() || !opt.sets.empty() || !opt.out.empty())
     throw InputError("--resume: the run's scene is DIR/scene.toml and its outputs go to DIR: give no SCENE, --set "
                      "or --out with it");
   const std::filesystem::path out = opt.resume;
   const std::filesystem::path file = out / "scene.toml";
   std::string text = read_text(file, "no such file (--resume takes the directory of a run)");
-  RunCheckpoint checkpoint = read_checkpoint(out, text);
+  RunCheckpoint checkpoint = read_checkpoint(out, text, rank);
   Scene scene = Scene::from_string(text, file.string());
   return {std::move(scene), std::move(text), out, std::move(checkpoint)};
 }
 
 // A checkpoint's state must be one of this problem (a scene.toml that matches its
 // fingerprint builds the same problem; this guards the file's own consistency).
-void check_sizes(const RunCheckpoint& c, const Simulation& sim, const std::filesystem::path& out) {
+// On subdomains (each rank its cells from its checkpoint) every rank's checkpoint must
+// be of the same step, and the run on as many ranks as the stopped one.
+void check_sizes(const RunCheckpoint& c, const Simulation& sim, const std::filesystem::path& out, int rank) {
   const ConstrainedProblem& p = sim.problem;
+  const std::string file = checkpoint_file(out, rank).string();
+  if (sim.partition && c.cells != sim.partition->sub.cell)
+    throw InputError(file + ": written by a run on another number of ranks (resume on as many as the stopped run "
+                            "had)");
   if (c.state.U.size() != p.n_free() || c.state.V.size() != p.mass->n_velocity() ||
       c.state.reaction.size() != p.n_free() || c.rate.size() != p.W->n_dofs() || c.step < 0 || c.step > sim.n_steps)
-    throw InputError((checkpoint_dir(out) / "state.bin").string() + ": not a valid checkpoint of this run's problem");
+    throw InputError(file + ": not a valid checkpoint of this run's problem");
+  if (largest(sim, c.step) != -largest(sim, -c.step))
+    throw InputError(file + ": the ranks' checkpoints are of different steps (the run was stopped while writing "
+                            "them)");
+}
+
+// An InputError met by some ranks only (a rank's checkpoint file) stops every rank of a
+// run on subdomains: the others would wait in the next collective call.
+template <class F>
+void agreed(const RunOptions& opt, F f) {
+  if (!opt.every_rank) return f();
+  std::optional<InputError> error;
+  try {
+    f();
+  } catch (const InputError& e) {
+    error = e;
+  }
+  if (petsc::max_over_ranks(error ? 1.0 : 0.0) > 0)
+    throw error ? *error
+                : InputError("--resume: another rank's checkpoint is missing or not valid (resume on as many ranks as "
+                             "the stopped run had)");
 }
 
 }  // namespace
@@ -179,10 +206,14 @@ bool runs_on_subdomains(const RunOptions& opt) {
 }
 
 int cmd_run(const RunOptions& opt) {
-  Start start = opt.resume.empty() ? fresh_start(opt) : resumed_start(opt);
+  // (on subdomains each rank reads its own checkpoint file)
+  const int rank = opt.every_rank ? petsc::rank() : 0;
+  std::optional<Start> started;
+  agreed(opt, [&] { started = opt.resume.empty() ? fresh_start(opt) : resumed_start(opt, rank); });
+  Start& start = *started;
   const std::optional<RunCheckpoint>& resume = start.checkpoint;
-  Simulation sim = make_simulation(start.scene);
-  if (resume) check_sizes(*resume, sim, start.out);
+  Simulation sim = make_simulation(start.scene, resume && opt.every_rank ? &resume->cells : nullptr);
+  if (resume) agreed(opt, [&] { check_sizes(*resume, sim, start.out, rank); });
   const auto u_exact = exact_displacement(sim);
   const ConstrainedProblem& p = sim.problem;
   // On subdomains every rank runs this function, the first alone writing and reporting;
@@ -201,7 +232,8 @@ int cmd_run(const RunOptions& opt) {
     if (!resume) write_file_atomically(out / "scene.toml", start.scene_text);
   }
   const int checkpoint_every = sim.spec.output.checkpoint_every;
-  const std::filesystem::path journals = checkpoint_every > 0 ? checkpoint_dir(out) : std::filesystem::path();
+  // (the journals of the files rank 0 writes; on subdomains every rank writes its state)
+  const std::filesystem::path journals = checkpoint_every > 0 && writes ? checkpoint_dir(out) : std::filesystem::path();
   if (!journals.empty()) std::filesystem::create_directories(journals);
   History history(sim, out, journals, resume ? std::optional(resume->history) : std::nullopt);
 
@@ -276,10 +308,11 @@ int cmd_run(const RunOptions& opt) {
   int last_checkpoint = resume ? resume->step : -1;
   auto checkpoint = [&](int n) {
     RunCheckpoint c{scene_fingerprint(start.scene_text), n, s, sim.scheme->memory(), E_initial, drift.abs(),
-                    drift.half_sum(), totals_now(), history.checkpoint(), rate, {}};
+                    drift.half_sum(), totals_now(), history.checkpoint(), rate, {}, {}};
     if (fields)
       for (const FieldsWriter::Frame& f : fields->frames()) c.frames.emplace_back(f.step, f.t);
-    write_checkpoint(out, c);
+    if (sim.partition) c.cells = sim.partition->sub.cell;
+    write_checkpoint(out, c, rank);
     sim.scheme->restore(c.scheme);
     last_checkpoint = n;
   };

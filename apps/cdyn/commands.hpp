@@ -28,6 +28,7 @@ struct RunOptions {
   bool warnings = true;            // print the run's warnings on stderr (cdyn study prints its own)
   std::string scene_text;          // not empty: the scene itself as TOML text, `scene` its source's name
   std::string resume;              // a run directory to resume (then no scene, sets or out)
+  bool every_rank = false;         // on subdomains: every rank of mpirun runs the command (main.cpp)
 };
 int cmd_run(const RunOptions& options);
 

@@ -27,6 +27,7 @@ void CsvOutput::end_rows() {
 }
 
 JournalMark CsvOutput::checkpoint() {
+  if (!journal_) return {};  // (a rank that writes no file)
   journal_->append(unjournaled_);
   unjournaled_.clear();
   return journal_->flush();

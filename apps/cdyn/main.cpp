@@ -102,8 +102,10 @@ int main(int argc, char** argv) {
       std::cerr << "cdyn: error: " << e.what() << "\n";
       return 2;
     }
-    if (*run && cdyn::app::runs_on_subdomains(run_options))
+    if (*run && cdyn::app::runs_on_subdomains(run_options)) {
       cdyn::petsc::every_rank_runs();
+      run_options.every_rank = true;
+    }
     else if (cdyn::petsc::rank() != 0)
       return cdyn::petsc::end_process(cdyn::petsc::serve());
   }

@@ -37,9 +37,28 @@ std::vector<int> graph_cells(const Mesh& mesh) {
 
 }  // namespace
 
-Partition make_partition(Mesh whole, const std::string& how) {
+// The cells `cells` of this rank, checked to deal out every cell of the mesh once over
+// the ranks (collective).
+std::vector<int> given_cells(const Mesh& mesh, const std::vector<int>& cells) {
+  std::vector<double> count(mesh.n_cells(), 0.0);
+  bool valid = true;
+  for (int c : cells) {
+    valid = valid && c >= 0 && c < mesh.n_cells();
+    if (valid) count[c] += 1.0;
+  }
+  petsc::reduce_over_ranks(count, petsc::Reduction::sum);
+  valid = petsc::max_over_ranks(valid ? 0.0 : 1.0) == 0.0;
+  if (!valid || std::any_of(count.begin(), count.end(), [](double n) { return n != 1.0; }))
+    throw InputError("solver.partition: the ranks' cells in the checkpoint do not deal out the mesh's cells once "
+                     "each (resume on as many ranks as the stopped run had)");
+  return cells;
+}
+
+Partition make_partition(Mesh whole, const std::string& how, const std::vector<int>* cells) {
   Partition part;
-  part.sub = sub_mesh(whole, how == "graph" ? graph_cells(whole) : slab_cells(whole, petsc::rank(), petsc::size()));
+  part.sub = sub_mesh(whole, cells                ? given_cells(whole, *cells)
+                             : how == "graph" ? graph_cells(whole)
+                                              : slab_cells(whole, petsc::rank(), petsc::size()));
   part.local_cell.assign(whole.n_cells(), -1);
   for (std::size_t c = 0; c < part.sub.cell.size(); ++c) part.local_cell[part.sub.cell[c]] = static_cast<int>(c);
   part.local_vertex.assign(whole.n_vertices(), -1);

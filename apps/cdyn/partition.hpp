@@ -43,10 +43,11 @@ struct Partition {
 };
 
 // This rank's cells of `whole` — its slab across x (`how` = "slabs", mesh/sub_mesh.hpp's
-// slab_cells) or its part of the cells' dual graph by PT-Scotch ("graph") — and the maps
-// between the two meshes; the ownership is number_unknowns's, once the problem is built.
-// Collective.
-Partition make_partition(Mesh whole, const std::string& how);
+// slab_cells), its part of the cells' dual graph by PT-Scotch ("graph"; its random seed
+// changes the parts from run to run), or `cells` if given (a resumed run's, InputError
+// unless the ranks' lists deal out every cell once) — and the maps between the two
+// meshes; the ownership is number_unknowns's, once the problem is built.  Collective.
+Partition make_partition(Mesh whole, const std::string& how, const std::vector<int>* cells = nullptr);
 
 // The whole problem's free unknown of each of sim.problem's (sim.partition set), who
 // owns it, and the whole problem's numbers of dofs and free unknowns (collective).

@@ -196,7 +196,7 @@ Eigen::VectorXd initial_field(const ConstrainedProblem& p, const std::vector<Exp
   return p.unknowns(p.W->interpolate(fields(e, p.W->components()), 0.0));
 }
 
-void build_problem(Simulation& sim) {
+void build_problem(Simulation& sim, const std::vector<int>* cells) {
   const SceneSpec& s = sim.spec;
   if (s.physics.model == "oscillator") {
     sim.mesh = std::make_unique<Mesh>(oscillator_mesh());
@@ -208,7 +208,7 @@ void build_problem(Simulation& sim) {
   if (s.solver.partition == "none") {
     sim.mesh = std::make_unique<Mesh>(make_mesh(s));
   } else {  // the problem on this rank's cells
-    sim.partition = std::make_unique<Partition>(make_partition(make_mesh(s), s.solver.partition));
+    sim.partition = std::make_unique<Partition>(make_partition(make_mesh(s), s.solver.partition, cells));
     sim.mesh = std::make_unique<Mesh>(sim.partition->sub.mesh);
   }
   sim.pair = s.method.mass.name();
@@ -319,7 +319,7 @@ bool cg_path_pays(const Simulation& sim) {
 }
 }  // namespace
 
-Simulation make_simulation(const SceneSpec& spec) {
+Simulation make_simulation(const SceneSpec& spec, const std::vector<int>* cells) {
   const auto start = std::chrono::steady_clock::now();
   Simulation sim;
   sim.spec = spec;
@@ -334,7 +334,7 @@ Simulation make_simulation(const SceneSpec& spec) {
   sim.blas_threads = blas_thread_count();
   sim.scene_name = s.name;
   sim.model = s.physics.model;
-  with_scene_keys(s, [&] { build_problem(sim); });
+  with_scene_keys(s, [&] { build_problem(sim, cells); });
   sim.constrained_vertices = constrained_vertices(*sim.mesh, sim.problem);
   ConstrainedProblem& p = sim.problem;
 

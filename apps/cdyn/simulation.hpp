@@ -59,9 +59,13 @@ struct Simulation {
   CellMaterials materials;  // elasticity: ρ, λ, μ of every cell (materials by region), for σ in the fields
 };
 
-// Builds and checks everything (bad input throws InputError naming the key).
-Simulation make_simulation(const SceneSpec& spec);
-inline Simulation make_simulation(const Scene& scene) { return make_simulation(read_scene(scene)); }
+// Builds and checks everything (bad input throws InputError naming the key).  On
+// subdomains, `cells`: this rank's cells if given (a resumed run keeps the stopped run's
+// partition), else the partition's of solver.partition.
+Simulation make_simulation(const SceneSpec& spec, const std::vector<int>* cells = nullptr);
+inline Simulation make_simulation(const Scene& scene, const std::vector<int>* cells = nullptr) {
+  return make_simulation(read_scene(scene), cells);
+}
 
 // The mesh a scene describes (mesh.kind: interval, unit_square, unit_cube, gmsh).
 Mesh make_mesh(const SceneSpec& spec);

@@ -24,7 +24,11 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     once, its pressure by its whole share of Γ_C), and summary.json's energies, counts
     and impact; the disk's field files, gathered on rank 0, carry the native files'
     arrays to 1e-9 of each array's largest value over the series (with meshio; the
-    vertex stress averaged over both ranks' cells); what such a run does not do yet is
+    vertex stress averaged over both ranks' cells); a run on two ranks stopped by Ctrl-C
+    (SIGINT to the process group) once both ranks' checkpoints exist, then resumed:
+    the uninterrupted run's history and contact.csv to 1e-9 (the reconstruction's CG
+    starts again from other guesses: not bit for bit) and its fields.pvd; resumed on
+    three ranks or on one: one line, exit status 2; what such a run does not do yet is
     refused by key, one line, exit status 2; a step QP that does not converge: one line,
     exit status 3.
 Only the standard library is used.
@@ -34,8 +38,10 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_helpers import QUIET, check, failures  # noqa: E402
@@ -233,9 +239,50 @@ else:
     check(agree[0] <= 1e-9 and len(os.listdir(os.path.join(work, "disk-fields-graph2", "fields"))) == 6,
           f"disk on 2 subdomains, graph: the field files = native (largest difference {agree[0]:.1e} in {agree[1]})")
 
+# Restart: stopped by Ctrl-C once each rank has written its checkpoint, then resumed.
+restart = ["time.T=2e-2", "output.every=100", "output.checkpoint_every=50", "solver.backend=petsc",
+           "solver.partition=slabs"]
+_, reference = run("disk-restart-reference", 2, disk, restart)
+out = os.path.join(work, "disk-restart")
+for d in (out, out + "-copy"):
+    shutil.rmtree(d, ignore_errors=True)
+proc = subprocess.Popen(command(2, disk, out, restart + ["output.fields=true"]), env=ENV, start_new_session=True,
+                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+deadline = time.time() + 60
+while not os.path.exists(os.path.join(out, "checkpoint", "state.rank1.bin")) and proc.poll() is None and \
+        time.time() < deadline:
+    time.sleep(0.002)
+running = proc.poll() is None
+if running:
+    os.killpg(proc.pid, signal.SIGINT)
+proc.wait(timeout=60)
+with open(os.path.join(out, "summary.json")) as f:
+    stopped = json.load(f)
+shutil.copytree(out, out + "-copy")
+done = subprocess.run([mpiexec, "--oversubscribe", "-n", "2", cdyn, "run", "--resume", out, "--quiet"], env=ENV,
+                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+with open(os.path.join(out, "summary.json")) as f:
+    resumed = json.load(f)
+d, key = largest_difference(reference, rows_of("disk-restart", "history.csv"))
+c, ckey = largest_difference(rows_of("disk-restart-reference", "contact.csv"), rows_of("disk-restart", "contact.csv"))
+check(running and stopped["partial"] and done.returncode == 0 and resumed["resumed_at"] == stopped["n_steps"]
+      and not resumed["partial"] and d <= 1e-9 and c <= 1e-9,
+      f"disk on 2 subdomains stopped at step {stopped['n_steps']} and resumed: the history to {d:.1e} in {key}, "
+      f"contact.csv to {c:.1e} in {ckey}")
+subprocess.run(command(2, disk, os.path.join(work, "disk-restart-fields"), restart + ["output.fields=true"]),
+               env=ENV, check=True)
+with open(os.path.join(out, "fields.pvd")) as a, open(os.path.join(work, "disk-restart-fields", "fields.pvd")) as b:
+    check(a.read() == b.read(), "disk on 2 subdomains resumed: fields.pvd as the uninterrupted run's")
+for ranks in (3, 0):
+    args = ([mpiexec, "--oversubscribe", "-n", str(ranks)] if ranks else []) + [cdyn, "run", "--resume",
+                                                                                 out + "-copy", "--quiet"]
+    done = subprocess.run(args, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+    mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+    check(done.returncode == 2 and len(mine) == 1 and "as many" in mine[0],
+          f"a checkpoint of 2 subdomains resumed on {ranks or 1} process(es): exit {done.returncode}, {mine}")
+
 SLAB_ERRORS = {
     "the native back end": (["solver.partition=slabs"], "solver.partition"),
-    "checkpoints": (SUBDOMAINS + ["output.checkpoint_every=5"], "output.checkpoint_every"),
     "the energy-exact scheme": (SUBDOMAINS + ["time.scheme=discrete_gradient"], "time.scheme"),
     "tao_tron": (SUBDOMAINS + ["solver.name=tao_tron"], "solver.name"),
     "a saddle-form pair": (SUBDOMAINS + ["method.pair=P2/P1"], "method.pair"),
