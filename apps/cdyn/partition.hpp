@@ -43,8 +43,8 @@ struct Partition {
 };
 
 // This rank's cells of `whole` — its slab across x (`how` = "slabs", mesh/sub_mesh.hpp's
-// slab_cells), its part of the cells' dual graph by PT-Scotch ("graph"; its random seed
-// changes the parts from run to run), or `cells` if given (a resumed run's, InputError
+// slab_cells), its part of the cells' dual graph by PT-Scotch ("graph"), or `cells` if
+// given (a resumed run's, InputError
 // unless the ranks' lists deal out every cell once) — and the maps between the two
 // meshes; the ownership is number_unknowns's, once the problem is built.  Collective.
 Partition make_partition(Mesh whole, const std::string& how, const std::vector<int>* cells = nullptr);

@@ -10,7 +10,8 @@ namespace cdyn::petsc {
 
 // The rank of each vertex of the graph whose vertex v has the neighbours
 // neighbour[offset[v]] … neighbour[offset[v + 1] − 1] (no v itself), given whole on
-// every rank; the same answer on every rank.  Collective; all 0 on one rank.
+// every rank; the same answer on every rank, and at every run (PT-Scotch on one thread).
+// Collective; all 0 on one rank.
 std::vector<int> partition_graph(const std::vector<int>& offset, const std::vector<int>& neighbour);
 
 }  // namespace cdyn::petsc
