@@ -265,7 +265,7 @@ Mesh make_mesh(const SceneSpec& s) {
 // The step solver of solver.name on solver.backend; on subdomains, of this rank's share.
 std::unique_ptr<StepSolver> make_solver(const Simulation& sim) {
   const SceneSpec::Solver& v = sim.spec.solver;
-  if (sim.partition) return petsc::make_petsc_subdomain_solver(sim.partition->in_whole, v.options, v.pc);
+  if (sim.partition) return petsc::make_petsc_subdomain_solver(sim.partition->in_whole, v.options, v.pc, v.name);
   if (v.backend == "petsc") return petsc::make_petsc_step_solver(v.name, v.options, v.pc);
   return make_step_solver(v.name, v.options);
 }
@@ -278,10 +278,6 @@ void check_backend(const Simulation& sim) {
     throw InputError("solver.backend: \"native\" runs on one process; under mpirun with more than one, set "
                      "solver.backend = \"petsc\"");
   if (v.backend != "petsc") return;
-  // (on subdomains the distributed pdas on CG alone: an explicit step matrix)
-  if (sim.partition && v.name != "pdas")
-    throw InputError("solver.name: a run on subdomains (solver.partition) solves its step QPs by pdas (got " +
-                     v.name + ")");
   if (sim.partition && !sparse_mass(*sim.problem.mass))
     throw InputError(sim.spec.method.key + ": with " + sim.pair + " the step is in saddle form (H^h continuous), "
                      "which a run on subdomains (solver.partition) does not solve: no explicit step matrix");

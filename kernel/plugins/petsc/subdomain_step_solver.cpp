@@ -29,8 +29,6 @@ class SubdomainStepSolver : public StepSolver {
   SubdomainStepSolver(const std::vector<int>& global, const std::string& name, const SolverChoice& choice,
                       const QPOptions& options)
       : labels_(global), global_(global), options_(options), name_(name), choice_(choice) {
-    if (choice.algorithm != Algorithm::pdas)  // (TAO and SNESVI: not yet tried on summed shares)
-      throw InputError("solver", "the subdomains' step QP is solved by the petsc pdas only (not " + name + ")");
     number_unknowns();
   }
   ~SubdomainStepSolver() override { forget_layout(); }

@@ -125,8 +125,8 @@ std::vector<int> partition_graph(const std::vector<int>& offset, const std::vect
 }
 
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
-                                                        const std::string& preconditioner) {
-  return std::unique_ptr<StepSolver>(plugin().make_subdomain_solver(global, "pdas", options, preconditioner));
+                                                        const std::string& preconditioner, const std::string& name) {
+  return std::unique_ptr<StepSolver>(plugin().make_subdomain_solver(global, name, options, preconditioner));
 }
 
 }  // namespace cdyn::petsc

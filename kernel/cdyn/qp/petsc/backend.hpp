@@ -55,13 +55,15 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
 // of the session calling solve() at once with its own S_r, r_r and the whole problem's
 // bounds on its unknowns, which sit at `global` in the whole problem
 // (problems/subdomain.hpp): the QP solved is Σ_r P_rᵀ S_r P_r, Σ_r P_rᵀ r_r; each rank
-// gets the solution and the reaction on its own unknowns.  pdas only, explicit S
-// (kernel/plugins/petsc/subdomain_step_solver.hpp).  Collective from construction on.
+// gets the solution and the reaction on its own unknowns.  `name` as for
+// make_petsc_step_solver, explicit S only (kernel/plugins/petsc/subdomain_step_solver.hpp).
+// Collective from construction on.
 // `global` may leave gaps (labels no rank holds).  Given to a scheme, the solver learns
 // which of these unknowns its QPs keep (StepSolver::set_unknowns) and condenses the
 // bubbles only (StepSolver::solves_a_share).
 std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& global, const QPOptions& options,
-                                                        const std::string& preconditioner = "");
+                                                        const std::string& preconditioner = "",
+                                                        const std::string& name = "pdas");
 
 // The collectives of a run whose ranks all run the program (the subdomains'), each
 // called by every rank; without the back end opened, x itself.
