@@ -3,6 +3,7 @@
 QP and what it exchanges (docs/distributed.md, "Measured").
 
 Usage: bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR [--sizes 16,32] [--pcs gamg,jacobi] [--native factor,cg] [--log]
+                     [--partitions none,graph]
        bench_mpi.py CDYN MPIEXEC SOURCE_DIR OUT_DIR --saddle P1+/P1,P2/P1 [--sizes 80]
 
 The scene: data/scenes/cube_3d.toml, the unit cube falling onto a plane (as
@@ -12,10 +13,14 @@ bubbles condensed.  For each size, one run of each of
     CG path (solver.linear = "cg"), or only those --native names (scripts/bench.sh: cg,
     the path the PETSc pdas distributes; the factor's n = 32 run alone is 100 s and
     4.2 GB, and bench_three_d.py measures that path),
-  - petsc pdas on 1 and on 2 ranks, for each preconditioner,
+  - petsc pdas on 1 and on 2 ranks, for each preconditioner and each solver.partition
+    of --partitions (none: rank 0 holds the whole problem; graph, slabs: each rank its
+    cells, docs/distributed.md "Subdomains"),
 reporting the mean over the contact window (steps 6–16) of history.csv's solve_s (the
-step QP) and step_s (the whole step), the strong-scaling speed-up and efficiency of the
-QP on 2 ranks, and the peak memory of each process (/usr/bin/time, the largest rank).
+step QP) and step_s (the whole step), the strong-scaling speed-up of the QP and of the
+step on 2 ranks and the QP's efficiency, summary.json's setup_s (the mesh, the assembly,
+the scheme's set-up), and the peak memory of each process (/usr/bin/time, the largest
+rank).
 One thread per process.  With --log, the last size's 2-rank run of the last
 preconditioner runs with PETSc's -log_view (its events are counted in any run; the
 option only prints them), whose summary gives the messages and reductions a step's QP
@@ -75,13 +80,15 @@ def main():
     ap.add_argument("--pcs", default="gamg,jacobi")
     ap.add_argument("--native", default="factor,cg")
     ap.add_argument("--log", action="store_true")
+    ap.add_argument("--partitions", default="none", help="solver.partition values of the petsc runs")
     ap.add_argument("--saddle", default="", help="pairs in saddle form, on the membrane (e.g. P1+/P1,P2/P1)")
     a = ap.parse_args()
     if a.saddle:
         return saddle_table(a, [int(s) for s in (a.sizes or "80").split(",")])
     a.scene = os.path.join(a.source, "data", "scenes", "cube_3d.toml")
-    print("| n | unknowns | back end | ranks | QP (s/step) | step (s/step) | QP speed-up | efficiency | peak memory per process (MB) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| n | unknowns | back end | ranks | set-up (s) | QP (s/step) | step (s/step) | QP speed-up | efficiency "
+          "| step speed-up | peak memory per process (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     sizes, pcs = [int(s) for s in (a.sizes or "16,32").split(",")], a.pcs.split(",")
     log = ""
     for n in sizes:
@@ -89,20 +96,24 @@ def main():
         native = {"factor": ("native factor", []), "cg": ("native cg", ["solver.linear=cg"])}
         for label, sets in (native[k] for k in a.native.split(",") if k):
             qp, step, peak, summary, _ = run(a, os.path.join(a.out, f"n{n}_{label.replace(' ', '_')}"), 0, base + sets)
-            print(f"| {n} | {summary['n_free']} | {label} | 1 | {qp:.4g} | {step:.4g} | | | {peak / 1024:.0f} |", flush=True)
-        for pc in a.pcs.split(","):
-            one = None
-            for ranks in (1, 2):
-                sets = base + ["solver.backend=petsc", f"solver.pc={pc}"]
-                logged = a.log and ranks == 2 and n == sizes[-1] and pc == pcs[-1]
-                qp, step, peak, summary, stdout = run(a, os.path.join(a.out, f"n{n}_petsc_{pc}_{ranks}"), ranks, sets,
-                                                      {"PETSC_OPTIONS": "-log_view"} if logged else None)
-                if logged:
-                    log = stdout
-                one = one or qp
-                speedup = f"{one / qp:.2f} | {one / qp / ranks:.2f}" if ranks > 1 else " | "
-                print(f"| {n} | {summary['n_free']} | petsc pdas {pc} | {ranks} | {qp:.4g} | {step:.4g} | {speedup} "
-                      f"| {peak / 1024:.0f} |", flush=True)
+            print(f"| {n} | {summary['n_free']} | {label} | 1 | {summary['setup_s']:.3g} | {qp:.4g} | {step:.4g} | | | "
+                  f"| {peak / 1024:.0f} |", flush=True)
+        for partition in a.partitions.split(","):
+            for pc in pcs:
+                one = None
+                for ranks in (1, 2):
+                    sets = base + ["solver.backend=petsc", f"solver.pc={pc}", f"solver.partition={partition}"]
+                    logged = a.log and ranks == 2 and n == sizes[-1] and pc == pcs[-1]
+                    tag = f"n{n}_petsc_{pc}_{ranks}" + ("" if partition == "none" else "_" + partition)
+                    qp, step, peak, summary, stdout = run(a, os.path.join(a.out, tag), ranks, sets,
+                                                          {"PETSC_OPTIONS": "-log_view"} if logged else None)
+                    if logged:
+                        log = stdout
+                    one = one or (qp, step)
+                    speedup = f"{one[0] / qp:.2f} | {one[0] / qp / ranks:.2f} | {one[1] / step:.2f}" if ranks > 1 else " | | "
+                    form = "" if partition == "none" else f", {partition}"
+                    print(f"| {n} | {summary['n_free']} | petsc pdas {pc}{form} | {ranks} | {summary['setup_s']:.3g} "
+                          f"| {qp:.4g} | {step:.4g} | {speedup} | {peak / 1024:.0f} |", flush=True)
     if a.log:
         keep = re.compile(r"^(Summary of Stages|Time \(sec\)|MPI Msg|MPI Reductions|MatMult |VecTDot|VecNorm|"
                           r"KSPSolve|PCSetUp|PCApply|MatZeroRowsCol|Event |Max |-----)")

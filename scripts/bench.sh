@@ -60,7 +60,9 @@ $PY "$ROOT/bench/bench_three_d.py" "$BUILD/apps/cdyn" "$ROOT" "$OUT/three_d" --s
 if [ -f "$BUILD/kernel/libcdyn_petsc.so" ]; then
   section "(l) the PETSc back end on 1 and 2 ranks: the cube's step QP, strong scaling (docs/distributed.md), about 2.5 minutes"
   $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 16,32 --pcs jacobi --native cg --log
-  section "(m) subdomains: the cube's time loop on each rank's cells, 1 and 2 ranks, against the whole problem (docs/distributed.md), about 1 minute"
+  section "(m) subdomains: the cube's time loop on each rank's cells, 1 and 2 ranks, against the whole problem (docs/distributed.md), about 2.5 minutes"
+  # cdyn run itself on each rank's cells (PT-Scotch's parts), n = 32 (the native CG path's run is (l)'s)
+  $PY "$ROOT/bench/bench_mpi.py" "$BUILD/apps/cdyn" "$(command -v mpiexec)" "$ROOT" "$OUT/mpi" --sizes 32 --pcs jacobi --native "" --partitions graph
   # (OpenMPI starts as root only with the two variables, as bench_mpi.py sets them)
   for n in 16 32; do
     "$BUILD/bench/bench_subdomains" $n 16 native
