@@ -38,6 +38,9 @@ void keep_freed_memory() {
 #endif
 }
 
+// How long a rank that failed waits for the others to fail too (a run on subdomains).
+constexpr double kWaitForTheOtherRanks = 10.0;
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -109,8 +112,7 @@ int main(int argc, char** argv) {
     else if (cdyn::petsc::rank() != 0)
       return cdyn::petsc::end_process(cdyn::petsc::serve());
   }
-  // (on subdomains every rank meets the same error: the first one says it)
-  const bool says = cdyn::petsc::rank() == 0;
+  std::string failure;  // the one line of a failed command
   auto command = [&]() -> int {
     try {
       if (*run) return cdyn::app::cmd_run(run_options);
@@ -121,14 +123,25 @@ int main(int argc, char** argv) {
       }
       if (*mesh) return cdyn::app::cmd_mesh(mesh_file, mesh_sets);
     } catch (const cdyn::InputError& e) {
-      if (says) std::cerr << "cdyn: error: " << e.what() << "\n";
+      failure = std::string("cdyn: error: ") + e.what();
       return 2;
     } catch (const cdyn::NumericalError& e) {
-      if (says) std::cerr << "cdyn: numerical failure: " << e.what() << "\n";
+      failure = std::string("cdyn: numerical failure: ") + e.what();
       return 3;
     }
     return 0;
   };
+  const int status = command();
+  // On subdomains every rank meets the same error (the same scene, the checks agreed on
+  // before a collective call), and rank 0 says it.  A rank that failed alone (say, a
+  // mesh file its machine cannot read) would leave the others waiting for it in their
+  // next collective call: it waits for them a while, then says why and ends the job.
+  const bool failed_here = status == 2 || status == 3;
+  if (run_options.every_rank && failed_here && !cdyn::petsc::ranks_meet(kWaitForTheOtherRanks)) {
+    std::cerr << failure << " (rank " << cdyn::petsc::rank() << "; the other ranks did not stop with it: the job is ended)\n";
+    cdyn::petsc::abort_all(status);
+  }
+  if (failed_here && cdyn::petsc::rank() == 0) std::cerr << failure << "\n";
   // (rank 0 tells the other ranks to quit, if any, and PETSc ends, if it was started)
-  return cdyn::petsc::end_process(command());
+  return cdyn::petsc::end_process(status);
 }

@@ -59,6 +59,10 @@ Partition make_partition(Mesh whole, const std::string& how, const std::vector<i
   part.sub = sub_mesh(whole, cells                ? given_cells(whole, *cells)
                              : how == "graph" ? graph_cells(whole)
                                               : slab_cells(whole, petsc::rank(), petsc::size()));
+  // (a rank without cells would have no problem to build: refused on every rank at once)
+  if (petsc::max_over_ranks(part.sub.cell.empty() ? 1.0 : 0.0) > 0.0)
+    throw InputError("solver.partition: a rank has no cells (" + std::to_string(petsc::size()) + " ranks for " +
+                     std::to_string(whole.n_cells()) + " cells): run on fewer ranks or refine the mesh");
   part.local_cell.assign(whole.n_cells(), -1);
   for (std::size_t c = 0; c < part.sub.cell.size(); ++c) part.local_cell[part.sub.cell[c]] = static_cast<int>(c);
   part.local_vertex.assign(whole.n_vertices(), -1);

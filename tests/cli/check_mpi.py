@@ -30,7 +30,9 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     starts again from other guesses: not bit for bit) and its fields.pvd; resumed on
     three ranks or on one: one line, exit status 2; what such a run does not do yet is
     refused by key, one line, exit status 2; a step QP that does not converge: one line,
-    exit status 3.
+    exit status 3; an error on one rank only (mpirun's MPMD form: its mesh file
+    missing): that rank's line and exit status 2 after its 10 s wait, no rank left
+    waiting; three ranks for two cells: one line, exit status 2.
 Only the standard library is used.
 """
 import csv
@@ -303,6 +305,23 @@ for what, (sets, key) in SLAB_ERRORS.items():
     mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
     check(done.returncode == 2 and len(mine) == 1 and mine[0].startswith("cdyn: error: " + key),
           f"subdomains, {what}: exit {done.returncode}, {mine}")
+# An error on one rank only (its mesh file missing: mpirun's MPMD form gives each rank its
+# own arguments): the other waits in a collective call; the failed rank waits 10 s for
+# it, then says why and ends the job with its exit status.
+missing = ["--set", "mesh.file=/nonexistent.msh"]
+one = [cdyn, "run", disk, "--out", os.path.join(work, "error"), "--quiet", "--set", "time.T=1e-4", "--set",
+       "solver.backend=petsc", "--set", "solver.partition=graph"]
+done = subprocess.run([mpiexec, "--oversubscribe", "-n", "1"] + one + [":", "-n", "1"] + one + missing, env=ENV,
+                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+check(done.returncode == 2 and len(mine) == 1 and "/nonexistent.msh" in mine[0] and "(rank 1;" in mine[0],
+      f"subdomains, an error on one rank only: exit {done.returncode}, {mine}")
+# three ranks for the two cells of the membrane at n = 1: a rank without cells, refused on every rank
+done = subprocess.run(command(3, "", os.path.join(work, "error"), SUBDOMAINS + ["mesh.n=1", "time.T=0.01"]), env=ENV,
+                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+check(done.returncode == 2 and len(mine) == 1 and "a rank has no cells" in mine[0],
+      f"subdomains, a rank without cells: exit {done.returncode}, {mine}")
 done = subprocess.run(command(2, os.path.join(src, "data/scenes/incline_block.toml"), os.path.join(work, "error"),
                               SUBDOMAINS + ["time.T=0.01"]),
                       env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)

@@ -11,6 +11,6 @@ extern "C" __attribute__((visibility("default"))) const cdyn::petsc::PluginTable
                                               s::finish, cdyn::petsc::new_petsc_step_solver,
                                               cdyn::petsc::new_subdomain_step_solver, s::every_rank_runs,
                                               s::reduce_over_ranks, s::gather_on_first_rank,
-                                              cdyn::petsc::partition_graph};
+                                              cdyn::petsc::partition_graph, s::ranks_meet, s::abort_all};
   return &table;
 }

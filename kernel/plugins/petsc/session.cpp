@@ -1,9 +1,11 @@
 // session.cpp — MPI and PETSc for a run on the PETSc back end; see session.hpp.
 #include "session.hpp"
 
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 #include "cdyn/base/error.hpp"
 #include "distributed_qp.hpp"
@@ -15,6 +17,9 @@ namespace {
 bool started = false;
 bool handler_pushed = false;
 bool everyone_runs = false;  // every rank runs the program (no rank serves: subdomains)
+// ranks_meet's own communicator: its barrier must not be matched with another
+// collective call a waiting rank is in (measured: MPI_ERR_TRUNCATE, then a hang)
+MPI_Comm meeting = MPI_COMM_NULL;
 
 }  // namespace
 
@@ -25,6 +30,7 @@ void start() {
   // instead of PETSc's tracebacks on every rank.
   handler_pushed = !std::getenv("CDYN_PETSC_TRACE");
   if (handler_pushed) PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
+  MPI_Comm_dup(PETSC_COMM_WORLD, &meeting);
   started = true;
 }
 
@@ -75,6 +81,28 @@ void finish() {
 }
 
 void every_rank_runs() { everyone_runs = true; }
+
+bool ranks_meet(double seconds) {
+  if (!started) return true;
+  MPI_Request request;
+  MPI_Ibarrier(meeting, &request);
+  if (seconds < 0) {
+    MPI_Wait(&request, MPI_STATUS_IGNORE);
+    return true;
+  }
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  int done = 0;
+  while (!done && std::chrono::steady_clock::now() < end) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return done != 0;  // (a request left pending: the caller ends the job)
+}
+
+void abort_all(int status) {
+  MPI_Abort(MPI_COMM_WORLD, status);
+  std::_Exit(status);  // (MPI_Abort does not return)
+}
 
 void reduce_over_ranks(double* x, int n, int op) {
   if (!started || n == 0) return;

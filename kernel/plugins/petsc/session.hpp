@@ -30,6 +30,11 @@ void finish();
 void reduce_over_ranks(double* x, int n, int op);
 // Every rank's x, rank after rank, on rank 0 (empty elsewhere); collective, x before start().
 std::vector<double> gather_on_first_rank(const std::vector<double>& x);
+// Whether every rank reaches this call within `seconds` (forever when < 0): a barrier
+// that a rank may give up waiting for (collective; true before start()).
+bool ranks_meet(double seconds);
+// Ends every process of the job with `status` (MPI_Abort).
+[[noreturn]] void abort_all(int status);
 // Every rank runs the program, none serves (the subdomains' solves,
 // subdomain_step_solver.hpp): finish() then sends no quit.
 void every_rank_runs();

@@ -119,6 +119,14 @@ std::vector<double> gather_on_first_rank(const std::vector<double>& x) {
   return opened ? opened->gather_on_first_rank(x) : x;
 }
 
+bool ranks_meet(double seconds) { return opened ? opened->ranks_meet(seconds) : true; }
+
+void abort_all(int status) {
+  std::cout.flush(), std::cerr.flush(), std::fflush(nullptr);
+  if (opened) opened->abort_all(status);
+  std::_Exit(status);
+}
+
 std::vector<int> partition_graph(const std::vector<int>& offset, const std::vector<int>& neighbour) {
   if (!opened) return std::vector<int>(offset.size() - 1, 0);
   return opened->partition_graph(offset, neighbour);

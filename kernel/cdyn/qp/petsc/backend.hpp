@@ -77,6 +77,12 @@ double sum_over_ranks(double x);
 double max_over_ranks(double x);
 // Every rank's x, rank after rank, on rank 0 (empty on the others).
 std::vector<double> gather_on_first_rank(const std::vector<double>& x);
+// Whether every rank reaches this call within `seconds` (forever when < 0): the end of a
+// run on subdomains, where a rank that failed alone (the others waiting for it in a
+// collective call) gives up after a while; true without the back end opened.
+bool ranks_meet(double seconds);
+// Ends every process of the job with `status` (MPI_Abort); std::_Exit without the back end.
+[[noreturn]] void abort_all(int status);
 // The rank of each vertex of a graph given whole on every rank (the neighbours of v:
 // neighbour[offset[v]] … neighbour[offset[v + 1] − 1]), by PT-Scotch: parts of about
 // equal size with few cut edges, the same on every rank (all 0 without the back end).

@@ -34,6 +34,8 @@ struct PluginTable {
   std::vector<double> (*gather_on_first_rank)(const std::vector<double>&);  // the ranks' in order, on rank 0
   // the rank of each vertex of a graph (offsets, neighbours), PT-Scotch's; collective
   std::vector<int> (*partition_graph)(const std::vector<int>&, const std::vector<int>&);
+  bool (*ranks_meet)(double seconds);  // a barrier waited for at most `seconds` (< 0: forever)
+  void (*abort_all)(int status);       // MPI_Abort
 };
 
 constexpr int kPluginVersion = 3;
