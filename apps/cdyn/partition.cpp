@@ -191,6 +191,4 @@ ExtraFields gathered_on_first_rank(const Simulation& sim, const ExtraFields& loc
   return whole;
 }
 
-bool owns_vertex(const Simulation& sim, int v) { return !sim.partition || sim.partition->owns_vertex[v]; }
-
 }  // namespace cdyn::app

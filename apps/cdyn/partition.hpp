@@ -9,7 +9,8 @@
 // a moving obstacle's work — count a vertex that several subdomains hold once, by its
 // owner, the lowest rank holding it.  The penetration and the violation are maxima.  A
 // probe is evaluated by the rank holding its cell, its multiplier by the owner of its
-// vertex.  In a serial run every function here is the identity.
+// vertex.  contact.csv and the field files are gathered on the first rank, which alone
+// writes.  In a serial run every function here is the identity.
 #pragma once
 
 #include <Eigen/Core>
@@ -82,8 +83,5 @@ std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPr
 // first rank (nothing on the others): a vertex's values from its owner, a cell's from
 // its rank (collective).
 ExtraFields gathered_on_first_rank(const Simulation& sim, const ExtraFields& local);
-
-// Whether this rank owns vertex v of sim.mesh (always, in a serial run).
-bool owns_vertex(const Simulation& sim, int v);
 
 }  // namespace cdyn::app
