@@ -17,8 +17,9 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     on the native back end, solver.linear on the petsc one; a step QP that does not
     converge on two ranks: one line, exit status 3, no rank left waiting.
  4. On subdomains (solver.partition = "slabs" or "graph": every rank builds and steps the
-    problem on its own cells, the step QPs summed over the ranks): the membrane, the
-    disk, the prism and the cube in space on one process and on two (slabs; on two also
+    problem on its own cells, the step QPs summed over the ranks): the membrane (also
+    with a rising obstacle, a load in t and damping: their works), the disk, the prism
+    and the cube in space on one process and on two (slabs; on two also
     PT-Scotch's parts of the cells' graph) give the native midpoint run's
     history to 1e-9 as above, contact.csv row for row (a vertex two ranks hold written
     once, its pressure by its whole share of Γ_C), and summary.json's energies, counts
@@ -177,6 +178,9 @@ def rows_of(out, name):
 
 SUBDOMAIN_SCENES = {
     "membrane": ["", "time.T=0.3"],
+    # the works of data in t and of damping: a rising obstacle (λ·Δg counted once per
+    # vertex), a load in t, Rayleigh damping
+    "membrane_data_in_t": ["", "time.T=0.3", 'obstacle.g="0.05*t"', 'physics.f="-3-2*t"', "damping.alpha=0.5"],
     "disk": [os.path.join(src, "data/scenes/disk.toml"), "time.T=2e-3"],
     "prism_3d": [os.path.join(src, "data/scenes/prism_3d.toml"), "time.T=1.5"],
     "cube": cube,
