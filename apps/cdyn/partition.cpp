@@ -86,6 +86,24 @@ void number_unknowns(Simulation& sim) {
   part.whole_dofs = W_whole.n_dofs();
   part.whole_free = static_cast<int>(bc.free_dofs().size());
   part.owns_unknown = owned_items(part.in_whole, part.whole_free);
+  // the constrained vertices each rank owns, with their normals, gathered on the first
+  std::vector<double> mine;
+  for (int v : sim.constrained_vertices) {
+    if (!part.owns_vertex[v]) continue;
+    Point n;
+    for (const auto& c : sim.problem.contact_nodes)
+      if (c.vertex == v) n = c.normal;
+    mine.insert(mine.end(), {static_cast<double>(part.sub.vertex[v]), n.x, n.y, n.z});
+  }
+  const std::vector<double> all = petsc::gather_on_first_rank(mine);
+  std::vector<std::pair<int, Point>> found;
+  for (std::size_t k = 0; k < all.size(); k += 4)
+    found.emplace_back(static_cast<int>(all[k]), Point{all[k + 1], all[k + 2], all[k + 3]});
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [v, n] : found) {
+    part.constrained_vertices.push_back(v);
+    part.normals.push_back(n);
+  }
 }
 
 ProblemSizes whole_sizes(const Simulation& sim) {

@@ -39,6 +39,10 @@ struct Partition {
   std::vector<char> owns_vertex;    // of this rank's vertices, those it owns
   int whole_dofs = 0, whole_free = 0;  // the whole problem's dofs and free unknowns
   int interface_vertices = 0;          // the vertices several ranks hold (what products exchange)
+  // On the first rank: the whole mesh's constrained vertices (sorted) and the normal of
+  // the constraint at each (elasticity), for condition (12) on the whole mesh.
+  std::vector<int> constrained_vertices;
+  std::vector<Point> normals;
   std::vector<int> in_whole;        // the whole problem's free unknown of each of this rank's
   std::vector<char> owns_unknown;   // of this rank's free unknowns, those it owns
 };
@@ -51,7 +55,8 @@ struct Partition {
 Partition make_partition(Mesh whole, const std::string& how, const std::vector<int>* cells = nullptr);
 
 // The whole problem's free unknown of each of sim.problem's (sim.partition set), who
-// owns it, and the whole problem's numbers of dofs and free unknowns (collective).
+// owns it, the whole problem's numbers of dofs and free unknowns, and on the first rank
+// its constrained vertices (collective; after sim.constrained_vertices).
 void number_unknowns(Simulation& sim);
 
 // The whole problem's sizes (on subdomains, after number_unknowns; collective).

@@ -81,11 +81,7 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   }
   if (!sim.spec.output.wellposed) {
     j["wellposed"] = {{"beta", nullptr}, {"satisfied", nullptr}, {"not_computed", "output.wellposed = false"}};
-  } else if (sim.partition) {  // (β is a property of the whole mesh and its constraints)
-    j["wellposed"] = {{"beta", nullptr},
-                      {"satisfied", nullptr},
-                      {"not_computed", "a run on subdomains; cdyn wellposed on the scene computes it"}};
-  } else {
+  } else {  // (on subdomains by the first rank, on the whole mesh)
     j["wellposed"] = wellposedness_summary(sim);
   }
   const SceneSpec::Units& units = sim.spec.units;

@@ -18,8 +18,13 @@ WellPosednessSetup wellposedness_setup(const Simulation& sim) {
     throw InputError("dirichlet.components: rollers are not supported by the check of condition (12)");
   WellPosednessSetup setup;
   setup.dirichlet_parts = sim.dirichlet_parts;
-  setup.constrained_vertices = sim.constrained_vertices;
   setup.components = sim.components;
+  if (sim.partition) {  // the whole mesh's, gathered on the first rank (partition.hpp)
+    setup.constrained_vertices = sim.partition->constrained_vertices;
+    if (sim.components > 1) setup.normals = sim.partition->normals;
+    return setup;
+  }
+  setup.constrained_vertices = sim.constrained_vertices;
   if (sim.components > 1) {  // the normal of the obstacle at each constrained vertex
     for (int v : setup.constrained_vertices)
       for (const auto& c : sim.problem.contact_nodes)
@@ -31,7 +36,8 @@ WellPosednessSetup wellposedness_setup(const Simulation& sim) {
 nlohmann::ordered_json wellposedness_summary(const Simulation& sim) {
   nlohmann::ordered_json j;
   try {
-    const WellPosedness w = condition12_on(*sim.mesh, sim.spec.method.mass, wellposedness_setup(sim));
+    const Mesh& mesh = sim.partition ? sim.partition->whole : *sim.mesh;  // (on subdomains, the first rank's)
+    const WellPosedness w = condition12_on(mesh, sim.spec.method.mass, wellposedness_setup(sim));
     j["beta"] = w.beta;
     j["satisfied"] = w.satisfied;
     j["dim_ker_B"] = w.dim_ker_B;

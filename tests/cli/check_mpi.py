@@ -22,8 +22,8 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     and the cube in space on one process and on two (slabs; on two also
     PT-Scotch's parts of the cells' graph) give the native midpoint run's
     history to 1e-9 as above, contact.csv row for row (a vertex two ranks hold written
-    once, its pressure by its whole share of Γ_C), and summary.json's energies, counts
-    and impact; TAO's BNCG and SNESVI on the prism's summed shares, the same; the disk's field files, gathered on rank 0, carry the native files'
+    once, its pressure by its whole share of Γ_C), and summary.json's energies, counts,
+    impact and condition (12) (β on the whole mesh by rank 0, as the native run's); TAO's BNCG and SNESVI on the prism's summed shares, the same; the disk's field files, gathered on rank 0, carry the native files'
     arrays to 1e-9 of each array's largest value over the series (with meshio; the
     vertex stress averaged over both ranks' cells); a run on two ranks stopped by Ctrl-C
     (SIGINT to the process group) once both ranks' checkpoints exist, then resumed:
@@ -196,7 +196,7 @@ for scene, (path, *sets) in SUBDOMAIN_SCENES.items():
         check(len(rows) == len(native) and d <= 1e-9,
               f"{scene} on {ranks} subdomain(s), {how} = native ({len(rows)} rows, largest difference {d:.1e} in {key})")
         same = all(summary[k] == summary0[k] for k in ("n_dofs", "n_free", "n_velocity", "n_constraints", "h",
-                                                        "max_active", "scheme"))
+                                                        "max_active", "scheme", "wellposed"))
         E = max(abs(summary[k] - summary0[k]) / abs(summary0["E_scale"]) for k in ("E0", "E_final", "E_abs_drift"))
         check(same and E <= 1e-9 and summary["partition"] == how,
               f"{scene} on {ranks} subdomain(s), {how}: summary.json's sizes, counts and energies (to {E:.1e})")
