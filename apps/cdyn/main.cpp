@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   // before a collective call), and rank 0 says it.  A rank that failed alone (say, a
   // mesh file its machine cannot read) would leave the others waiting for it in their
   // next collective call: it waits for them a while, then says why and ends the job.
-  const bool failed_here = status == 2 || status == 3;
+  const bool failed_here = !failure.empty();
   if (run_options.every_rank && failed_here && !cdyn::petsc::ranks_meet(kWaitForTheOtherRanks)) {
     std::cerr << failure << " (rank " << cdyn::petsc::rank() << "; the other ranks did not stop with it: the job is ended)\n";
     cdyn::petsc::abort_all(status);

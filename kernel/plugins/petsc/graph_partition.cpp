@@ -4,9 +4,8 @@
 
 #include <petscmat.h>
 
-#include <cstdlib>
-
 #include <algorithm>
+#include <cstdlib>
 
 #include "distributed_qp.hpp"
 

@@ -65,11 +65,11 @@ std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& 
                                                         const std::string& preconditioner = "",
                                                         const std::string& name = "pdas");
 
-// The collectives of a run whose ranks all run the program (the subdomains'), each
-// called by every rank; without the back end opened, x itself.
-// From now on every rank runs the program: none waits for rank 0's commands (serve()),
-// and rank 0 sends none at the end.  Before anything collective.
+// A run whose ranks all run the program (the subdomains'): from now on none waits for
+// rank 0's commands (serve()), and rank 0 sends none at the end.  Before anything
+// collective.
 void every_rank_runs();
+// Its collectives, each called by every rank; without the back end opened, x itself.
 enum class Reduction { sum = 0, max = 1, min = 2 };
 // x reduced over the ranks in place, on every rank.
 void reduce_over_ranks(std::vector<double>& x, Reduction op);
