@@ -30,9 +30,10 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
                                                                                               : "factor";
   // how the native pdas solved the full-step reconstruction's QP (eq. 14; on rank 0 with
   // the petsc back end), "-" without one
-  j["reconstruction_linear"] = sim.scheme->full_steps() != FullSteps::Reconstructed      ? "-"
-                               : sim.spec.time.parameters.reconstruct_by_cg ? "cg"
-                                                                            : "factor";
+  // (on subdomains the step's solver solves it, on the ranks: "-")
+  j["reconstruction_linear"] = sim.scheme->full_steps() != FullSteps::Reconstructed || sim.partition ? "-"
+                               : sim.spec.time.parameters.reconstruct_by_cg                        ? "cg"
+                                                                                                   : "factor";
   // the back end and its processes (docs/distributed.md): rank 0 and the ranks serving it
   j["backend"] = sim.spec.solver.backend;
   j["ranks"] = petsc::size();

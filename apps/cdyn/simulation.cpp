@@ -342,19 +342,19 @@ Simulation make_simulation(const SceneSpec& spec, const std::vector<int>* cells)
   if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_path_pays(sim);  // (refused with petsc)
   // (the CG path's solves stop at the QP tolerance, above what the energy-exact
   // scheme's correction needs: auto takes the midpoint with its full-step
-  // reconstruction then, docs/performance.md, and on subdomains, whose step QPs the
-  // ranks solve by CG)
+  // reconstruction then, docs/performance.md; and on subdomains, where the energy-exact
+  // scheme does not run)
   sim.scheme_name = s.time.scheme != "auto"                           ? s.time.scheme
                     : s.solver.options.pdas_cg_only || sim.partition ? "midpoint"
                                                                      : recommended_scheme(p);
   // The full-step reconstruction's QP solved as the step's: by CG alone on that path.
   // On the petsc back end rank 0 solves it with the native pdas, by the same rule
   // (docs/distributed.md: there the factor of ZᵀAZ was rank 0's serial work), but not
-  // for the energy-exact scheme's corrections.  On subdomains the ranks solve it together,
-  // by CG (the step solver's companion).
+  // for the energy-exact scheme's corrections.  (On subdomains the ranks solve it together
+  // with the step's solver, its companion: this flag is not read.)
   sim.spec.time.parameters.reconstruct_by_cg =
       s.solver.options.pdas_cg_only ||
-      (s.solver.backend == "petsc" && sim.scheme_name != "discrete_gradient" && (sim.partition || cg_path_pays(sim)));
+      (s.solver.backend == "petsc" && sim.scheme_name != "discrete_gradient" && cg_path_pays(sim));
   sim.solver_name = s.solver.name;
   // (without a sparse M the step QP is in saddle form: no explicit S for CG alone)
   if (s.solver.options.pdas_cg_only && !sparse_mass(*p.mass))
