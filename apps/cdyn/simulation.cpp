@@ -208,6 +208,11 @@ void build_problem(Simulation& sim, const std::vector<int>* cells) {
   if (s.solver.partition == "none") {
     sim.mesh = std::make_unique<Mesh>(make_mesh(s));
   } else {  // the problem on this rank's cells
+    // (under mpirun the other commands run on rank 0 alone, the others serving its
+    // solves: the partition's collective calls would wait for them forever)
+    if (petsc::launched_in_parallel() && !petsc::every_rank_running())
+      throw InputError("solver.partition: under mpirun only `cdyn run` runs on subdomains; run this command "
+                       "without mpirun (one process holds every cell)");
     sim.partition = std::make_unique<Partition>(make_partition(make_mesh(s), s.solver.partition, cells));
     sim.mesh = std::make_unique<Mesh>(sim.partition->sub.mesh);
   }

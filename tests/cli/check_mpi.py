@@ -33,7 +33,8 @@ Usage: check_mpi.py CDYN MPIEXEC SOURCE_DIR WORKDIR
     refused by key, one line, exit status 2; a step QP that does not converge: one line,
     exit status 3; an error on one rank only (mpirun's MPMD form: its mesh file
     missing): that rank's line and exit status 2 after its 10 s wait, no rank left
-    waiting; three ranks for two cells: one line, exit status 2.
+    waiting; three ranks for two cells, and `cdyn wellposed` under mpirun (rank 0 alone
+    runs it): one line, exit status 2.
 Only the standard library is used.
 """
 import csv
@@ -320,6 +321,13 @@ done = subprocess.run([mpiexec, "--oversubscribe", "-n", "1"] + one + [":", "-n"
 mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
 check(done.returncode == 2 and len(mine) == 1 and "/nonexistent.msh" in mine[0] and "(rank 1;" in mine[0],
       f"subdomains, an error on one rank only: exit {done.returncode}, {mine}")
+# cdyn wellposed under mpirun runs on rank 0 alone (the others serve): subdomains refused
+done = subprocess.run([mpiexec, "--oversubscribe", "-n", "2", cdyn, "wellposed", disk, "--set", "solver.backend=petsc",
+                       "--set", "solver.partition=graph"], env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                      text=True, timeout=120)
+mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+check(done.returncode == 2 and len(mine) == 1 and mine[0].startswith("cdyn: error: solver.partition"),
+      f"subdomains, cdyn wellposed under mpirun: exit {done.returncode}, {mine}")
 # three ranks for the two cells of the membrane at n = 1: a rank without cells, refused on every rank
 done = subprocess.run(command(3, "", os.path.join(work, "error"), SUBDOMAINS + ["mesh.n=1", "time.T=0.01"]), env=ENV,
                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)

@@ -37,6 +37,7 @@ std::vector<std::filesystem::path> plugin_candidates() {
 
 const PluginTable* opened = nullptr;
 std::string refused;  // refuse()'s reason
+bool all_ranks_run = false;  // every_rank_runs() was called
 
 const PluginTable& plugin() {
   if (opened) return *opened;
@@ -98,7 +99,12 @@ std::unique_ptr<StepSolver> make_petsc_step_solver(const std::string& name, cons
   return std::unique_ptr<StepSolver>(plugin().make_solver(name, options, preconditioner));
 }
 
-void every_rank_runs() { plugin().every_rank_runs(); }
+void every_rank_runs() {
+  plugin().every_rank_runs();
+  all_ranks_run = true;
+}
+
+bool every_rank_running() { return all_ranks_run; }
 
 void reduce_over_ranks(std::vector<double>& x, Reduction op) {
   if (opened) opened->reduce_over_ranks(x.data(), static_cast<int>(x.size()), static_cast<int>(op));

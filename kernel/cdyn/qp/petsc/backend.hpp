@@ -69,6 +69,8 @@ std::unique_ptr<StepSolver> make_petsc_subdomain_solver(const std::vector<int>& 
 // rank 0's commands (serve()), and rank 0 sends none at the end.  Before anything
 // collective.
 void every_rank_runs();
+// Whether every_rank_runs() was called in this process.
+bool every_rank_running();
 // Its collectives, each called by every rank; without the back end opened, x itself.
 enum class Reduction { sum = 0, max = 1, min = 2 };
 // x reduced over the ranks in place, on every rank.
