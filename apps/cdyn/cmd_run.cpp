@@ -273,26 +273,21 @@ int cmd_run(const RunOptions& opt) {
   // On subdomains every rank makes its arrays and the first writes them on the whole mesh.
   const bool with_fields = sim.spec.output.fields;
   std::optional<FieldsWriter> fields;
-  if (with_fields && !sim.partition) fields.emplace(out, *sim.mesh, p);
-  if (with_fields && sim.partition && writes) fields.emplace(out, sim.partition->whole);
+  if (with_fields && writes) fields.emplace(out, sim.partition ? sim.partition->whole : *sim.mesh);
   if (fields && resume) fields->continue_series(resume->frames, resume->step);
   const DerivedFields derived(sim);  // σ, ε, von Mises, contact pressure, regions
   double fields_seconds = 0.0;       // in this process
   auto write_fields = [&](int step) {
     const auto tf = Clock::now();
     const Eigen::VectorXd U_full = p.full(s.U);
-    if (!sim.partition) {
-      fields->write(step, s.t, U_full, rate, force_xy, derived(U_full, force_xy, &s));
-    } else {
-      ExtraFields arrays = derived(U_full, force_xy, &s);
-      const std::vector<FieldArray> state = state_arrays(*sim.mesh, p, U_full, rate, force_xy);
-      arrays.point.insert(arrays.point.begin(), state.begin(), state.end());
-      ExtraFields whole = gathered_on_first_rank(sim, arrays);
-      if (fields) {
-        derived.add_vertex_stress(sim.partition->whole, whole);
-        fields->write(step, s.t, whole);
-      }
+    ExtraFields arrays = derived(U_full, force_xy, &s);
+    const std::vector<FieldArray> state = state_arrays(*sim.mesh, p, U_full, rate, force_xy);
+    arrays.point.insert(arrays.point.begin(), state.begin(), state.end());
+    if (sim.partition) {  // the ranks' arrays on the whole mesh, the vertex stress completed there
+      arrays = gathered_on_first_rank(sim, arrays);
+      if (fields) derived.add_vertex_stress(sim.partition->whole, arrays);
     }
+    if (fields) fields->write(step, s.t, arrays);
     fields_seconds += seconds_since(tf);
   };
   const auto t0 = Clock::now();

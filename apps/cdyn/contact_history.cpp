@@ -26,7 +26,7 @@ ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::pat
                                const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
     : sim_(sim), mesh_(*sim.mesh), problem_(sim.problem), contact_(sim.problem), csv_(file, journal, resume) {
   friction_ = !problem_.friction.empty();
-  if (sim.partition) whole_weight_ = whole_contact_weights(sim, contact_);
+  whole_weight_ = whole_contact_weights(sim, contact_);
   friction_of_.assign(mesh_.n_vertices(), -1);
   for (std::size_t k = 0; k < problem_.friction.size(); ++k)
     friction_of_[problem_.contact_nodes[problem_.friction[k].node].vertex] = static_cast<int>(k);
@@ -49,12 +49,14 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
   const bool vectors = write && friction_ && mesh_.dim == 3;
   const Eigen::VectorXd force_xy = vectors ? tangential_xy(problem_, s.reaction) : Eigen::VectorXd();
   const Eigen::VectorXd slip_xy = vectors ? tangential_xy(problem_, s.slip) : Eigen::VectorXd();
-  for (const ContactPressure::Vertex& c : contact_.vertices()) {
+  const std::vector<ContactPressure::Vertex>& vertices = contact_.vertices();
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const ContactPressure::Vertex& c = vertices[i];
     const double force = contact_.normal_force(reaction_xy, c);
     total += force;
     if (!write) continue;
     write_row(csv, step, t, c.vertex, mesh_.vertices[c.vertex], mesh_.dim, c.s, contact_.gap(U_full, c, t), force,
-              c.weight > 0.0 ? force / c.weight : 0.0);
+              whole_weight_[i] > 0.0 ? force / whole_weight_[i] : 0.0);
     if (friction_) {
       const int k = friction_of_[c.vertex];
       const char* zeros = mesh_.dim == 3 ? ",0,0,0,0,0,0" : "";

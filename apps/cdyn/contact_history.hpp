@@ -54,7 +54,7 @@ class ContactHistory {
   CsvOutput csv_;
   std::vector<int> friction_of_;  // per vertex of the mesh, its friction node or −1
   bool friction_ = false;
-  std::vector<double> whole_weight_;  // on subdomains: w(a) of contact_'s vertices over every rank's Γ_C
+  std::vector<double> whole_weight_;  // w(a) of contact_'s vertices over the whole Γ_C (every rank's)
 };
 
 // summary.json's "impact" entry.
