@@ -254,7 +254,7 @@ int cmd_run(const RunOptions& opt) {
   // quadrature of problems/data_work.hpp; J is balanced against it (and against the
   // damping's work W_d).  (On subdomains the reaction's work on the unknowns each rank owns.)
   auto add_data_work = [&](const StepStats& st, double t_before, const Eigen::VectorXd& U_before) {
-    if (!has_data_in_t(p)) return;
+    if (!sim.data_in_t) return;
     totals.data_work +=
         st.external_work
             ? *st.external_work
@@ -359,6 +359,7 @@ int cmd_run(const RunOptions& opt) {
     const Eigen::VectorXd du = p.global(s.U - U_old) / sim.dt;
     for (int j = 0; j < p.n_free(); ++j) rate[p.bc->free_dofs()[j]] = du[j];
     if (sim.spec.time.parameters.damping.active()) st.dissipated = summed(sim, st.dissipated);
+    if (sim.with_friction) st.friction_work = summed(sim, st.friction_work);  // (each rank its contacts')
     totals.add(st, largest(sim, p.max_violation(s.U, s.t)));
     add_data_work(st, t_old, U_old);
     record(n, st, step_seconds, E);

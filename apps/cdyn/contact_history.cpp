@@ -25,7 +25,7 @@ void write_row(std::ostream& csv, int step, double t, int vertex, const Point& a
 ContactHistory::ContactHistory(const Simulation& sim, const std::filesystem::path& file,
                                const std::filesystem::path& journal, const std::optional<JournalMark>& resume)
     : sim_(sim), mesh_(*sim.mesh), problem_(sim.problem), contact_(sim.problem), csv_(file, journal, resume) {
-  friction_ = !problem_.friction.empty();
+  friction_ = sim.with_friction;  // (on subdomains rank 0 writes the header for all)
   whole_weight_ = whole_contact_weights(sim, contact_);
   friction_of_.assign(mesh_.n_vertices(), -1);
   for (std::size_t k = 0; k < problem_.friction.size(); ++k)
@@ -45,10 +45,7 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
   const double t = s.t;
   double total = 0.0;
   std::ostream& csv = csv_.rows();
-  // in space, the tangential force and the slip in x, y, z
-  const bool vectors = write && friction_ && mesh_.dim == 3;
-  const Eigen::VectorXd force_xy = vectors ? tangential_xy(problem_, s.reaction) : Eigen::VectorXd();
-  const Eigen::VectorXd slip_xy = vectors ? tangential_xy(problem_, s.slip) : Eigen::VectorXd();
+  const FrictionVectors xy = friction_vectors(s, write);
   const std::vector<ContactPressure::Vertex>& vertices = contact_.vertices();
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     const ContactPressure::Vertex& c = vertices[i];
@@ -57,37 +54,48 @@ double ContactHistory::record(int step, const State& s, const Eigen::VectorXd& U
     if (!write) continue;
     write_row(csv, step, t, c.vertex, mesh_.vertices[c.vertex], mesh_.dim, c.s, contact_.gap(U_full, c, t), force,
               whole_weight_[i] > 0.0 ? force / whole_weight_[i] : 0.0);
-    if (friction_) {
-      const int k = friction_of_[c.vertex];
-      const char* zeros = mesh_.dim == 3 ? ",0,0,0,0,0,0" : "";
-      if (k < 0) {
-        csv << ",0,0,-1" << zeros;
-      } else if (s.slip.size() == 0) {  // before the first step
-        csv << ",0,0,0" << zeros;
-      } else {
-        const FrictionNode& node = problem_.friction[k];
-        // (in space a length: |·| also where a roller leaves one tangential unknown)
-        const auto length = [&](double x) { return mesh_.dim == 3 ? std::abs(x) : x; };
-        csv << "," << (s.reaction.size() ? length(tangential_magnitude(node, s.reaction)) : 0.0) << ","
-            << length(tangential_magnitude(node, s.slip)) << "," << s.contact_status[k];
-        if (mesh_.dim == 3) {
-          const Point F = vertex_force(problem_, force_xy, c.vertex), D = vertex_force(problem_, slip_xy, c.vertex);
-          csv << "," << F.x << "," << F.y << "," << F.z << "," << D.x << "," << D.y << "," << D.z;
-        }
-      }
-    }
+    for (double x : friction_columns(s, c.vertex, xy)) csv << "," << x;
     csv << "\n";
   }
   if (write) csv_.end_rows();
   return total;
 }
 
+ContactHistory::FrictionVectors ContactHistory::friction_vectors(const State& s, bool write) const {
+  if (!write || !friction_ || mesh_.dim != 3) return {};
+  return {tangential_xy(problem_, s.reaction), tangential_xy(problem_, s.slip)};
+}
+
+std::vector<double> ContactHistory::friction_columns(const State& s, int vertex, const FrictionVectors& xy) const {
+  if (!friction_) return {};
+  const int k = friction_of_[vertex];
+  std::vector<double> out(friction_width(), 0.0);
+  if (k < 0) {
+    out[2] = -1;
+  } else if (s.slip.size() > 0) {  // (zeros before the first step)
+    const FrictionNode& node = problem_.friction[k];
+    // (in space a length: |·| also where a roller leaves one tangential unknown)
+    const auto length = [&](double x) { return mesh_.dim == 3 ? std::abs(x) : x; };
+    out[0] = s.reaction.size() ? length(tangential_magnitude(node, s.reaction)) : 0.0;
+    out[1] = length(tangential_magnitude(node, s.slip));
+    out[2] = s.contact_status[k];
+    if (mesh_.dim == 3) {
+      const Point F = vertex_force(problem_, xy.force, vertex), D = vertex_force(problem_, xy.slip, vertex);
+      const double v[] = {F.x, F.y, F.z, D.x, D.y, D.z};
+      std::copy(v, v + 6, out.begin() + 3);
+    }
+  }
+  return out;
+}
+
 double ContactHistory::record_share(int step, const State& s, const Eigen::VectorXd& U_full,
                                     const Eigen::VectorXd& reaction_xy, bool write) {
   const Partition& part = *sim_.partition;
-  constexpr int kColumns = 9;  // obstacle, s, vertex, x, y, z, gap, force, pressure
+  // obstacle, s, vertex, x, y, z, gap, force, pressure, then the friction columns
+  const int kColumns = 9 + friction_width();
   std::vector<double> mine;
   double total = 0.0;
+  const FrictionVectors xy = friction_vectors(s, write);
   const std::vector<ContactPressure::Vertex>& vertices = contact_.vertices();
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     const ContactPressure::Vertex& c = vertices[i];
@@ -100,6 +108,7 @@ double ContactHistory::record_share(int step, const State& s, const Eigen::Vecto
     mine.insert(mine.end(), {static_cast<double>(contact_.node(c).obstacle), c.s,
                              static_cast<double>(part.sub.vertex[c.vertex]), a.x, a.y, a.z,
                              contact_.gap(U_full, c, s.t), force, w > 0.0 ? force / w : 0.0});
+    for (double x : friction_columns(s, c.vertex, xy)) mine.push_back(x);
   }
   if (!write) return total;
   const std::vector<double> all = petsc::gather_on_first_rank(mine);
@@ -112,6 +121,7 @@ double ContactHistory::record_share(int step, const State& s, const Eigen::Vecto
   for (int k : order) {
     const double* r = &all[k * kColumns];
     write_row(csv, step, s.t, static_cast<int>(r[2]), Point{r[3], r[4], r[5]}, mesh_.dim, r[1], r[6], r[7], r[8]);
+    for (int j = 9; j < kColumns; ++j) csv << "," << r[j];
     csv << "\n";
   }
   csv_.end_rows();

@@ -47,6 +47,16 @@ class ContactHistory {
   double record_share(int step, const State& s, const Eigen::VectorXd& U_full, const Eigen::VectorXd& reaction_xy,
                       bool write);
 
+  // The friction columns of a vertex (none without friction): the tangential force, the
+  // slip, the status, and in space the force's and the slip's x, y, z from these vectors
+  // (tangential_xy of the reaction and the slip, made only for a written step in space).
+  struct FrictionVectors {
+    Eigen::VectorXd force, slip;
+  };
+  FrictionVectors friction_vectors(const State& s, bool write) const;
+  std::vector<double> friction_columns(const State& s, int vertex, const FrictionVectors& xy) const;
+  int friction_width() const { return !friction_ ? 0 : mesh_.dim == 3 ? 9 : 3; }
+
   const Simulation& sim_;
   const Mesh& mesh_;
   const ConstrainedProblem& problem_;

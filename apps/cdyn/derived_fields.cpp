@@ -44,7 +44,8 @@ const FieldArray& named(const std::vector<FieldArray>& arrays, const std::string
 
 }  // namespace
 
-DerivedFields::DerivedFields(const Simulation& sim) : sim_(sim) {
+DerivedFields::DerivedFields(const Simulation& sim)
+    : sim_(sim), friction_(sim.with_friction) {
   if (sim.components > 1 && sim.has_obstacle) {
     contact_.emplace(sim.problem);
     weight_ = whole_contact_weights(sim, *contact_);
@@ -78,7 +79,7 @@ ExtraFields DerivedFields::operator()(const Eigen::VectorXd& U_full, const Eigen
     out.point.push_back(std::move(pressure));
   }
   const ConstrainedProblem& p = sim_.problem;
-  if (!p.friction.empty()) {
+  if (friction_) {
     // in the plane λ_T and the slip along t (signed); in space their vectors in x, y, z
     const int d = mesh.dim == 3 ? 3 : 1;
     FieldArray force{"tangential_force", d, std::vector<double>(d * mesh.n_vertices(), 0.0)};

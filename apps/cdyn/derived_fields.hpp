@@ -47,6 +47,7 @@ class DerivedFields {
   const Simulation& sim_;
   std::optional<ContactPressure> contact_;
   std::vector<double> weight_;  // w(a) of contact_'s vertices over the whole Γ_C
+  bool friction_ = false;       // the friction arrays (on subdomains: friction nodes on any rank)
 };
 
 }  // namespace cdyn::app

@@ -168,6 +168,23 @@ std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPr
   return out;
 }
 
+void whole_friction_thresholds(Simulation& sim) {
+  if (!sim.partition || !sim.with_friction) return;
+  ConstrainedProblem& p = sim.problem;
+  const SubMesh& sub = sim.partition->sub;
+  const int obstacles = static_cast<int>(sim.spec.obstacle.rigid.size());
+  auto item = [&](const FrictionNode& f) {  // (its vertex in the whole mesh, its obstacle)
+    const ConstrainedProblem::ContactNode& c = p.contact_nodes[f.node];
+    return sub.vertex[c.vertex] * obstacles + c.obstacle;
+  };
+  std::vector<double> s(static_cast<std::size_t>(sim.partition->whole.n_vertices()) * obstacles, 0.0);
+  for (const FrictionNode& f : p.friction)
+    if (f.law == FrictionLaw::Tresca) s[item(f)] += f.threshold;
+  summed(sim, s);
+  for (FrictionNode& f : p.friction)
+    if (f.law == FrictionLaw::Tresca) f.threshold = s[item(f)];
+}
+
 namespace {
 
 // The arrays' tuples of the listed items (`mine`: those this rank sends, all when empty),

@@ -84,6 +84,11 @@ bool writes_files(const Simulation& sim);
 // rank's (collective).
 std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPressure& contact);
 
+// Tresca's nodal thresholds s_a = ∫_{Γ_C} s φ_a of sim.problem's friction nodes over the
+// whole Γ_C, as whole_contact_weights: each rank integrated over its own facets
+// (collective on subdomains; nothing in a serial run).
+void whole_friction_thresholds(Simulation& sim);
+
 // The field arrays of this rank's vertices and cells placed on the whole mesh, on the
 // first rank (nothing on the others): a vertex's values from its owner, a cell's from
 // its rank (collective).

@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "cdyn/post/contact_force.hpp"
-#include "cdyn/problems/data_work.hpp"
 
 namespace cdyn::app {
 
@@ -59,8 +58,8 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
                  const std::optional<HistoryMemory>& resume)
     : sim_(sim),
       damped_(sim.spec.time.parameters.damping.active()),
-      data_in_t_(has_data_in_t(sim.problem)),
-      friction_(!sim.problem.friction.empty()),
+      data_in_t_(sim.data_in_t),
+      friction_(sim.with_friction),
       writes_(writes_files(sim)),
       csv_(writes_ ? out / "history.csv" : std::filesystem::path(),
            journal_dir.empty() ? journal_dir : journal_dir / "history.csv", mark(resume, &HistoryMemory::history)) {

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstring>
 
-#include "cdyn/problems/data_work.hpp"
 #include "cdyn/qp/petsc/backend.hpp"
 #include "commands.hpp"
 #include "exact_solution.hpp"
@@ -13,7 +12,6 @@ namespace cdyn::app {
 
 nlohmann::ordered_json run_summary(const RunOutcome& r) {
   const Simulation& sim = r.sim;
-  const ConstrainedProblem& p = sim.problem;
   const RunTotals& totals = r.totals;
   nlohmann::ordered_json j;
   j["scene"] = sim.scene_name;
@@ -60,9 +58,9 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   const RayleighDamping& damping = sim.spec.time.parameters.damping;
   j["damping"] = damping.active() ? nlohmann::ordered_json{{"alpha", damping.alpha}, {"beta", damping.beta}}
                                   : nlohmann::ordered_json();
-  if (has_data_in_t(p)) j["data_work"] = totals.data_work;  // the drift is then of J + W_d − J0 − data_work
+  if (sim.data_in_t) j["data_work"] = totals.data_work;  // the drift is then of J + W_d − J0 − data_work
   j["dissipated_work"] = totals.dissipated;  // W_d(T): J(T) + W_d(T) = J0 for a conservative scheme
-  if (!p.friction.empty()) j["friction_work"] = totals.friction_work;  // W_f(T): in the drift with W_d
+  if (sim.with_friction) j["friction_work"] = totals.friction_work;  // W_f(T): in the drift with W_d
   j["max_violation"] = totals.max_violation;
   j["max_active"] = totals.max_active;
   j["setup_s"] = sim.setup_seconds;  // this process's (a resumed run's own)
@@ -95,14 +93,13 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
 
 void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, const std::string& plot_note) {
   const Simulation& sim = r.sim;
-  const ConstrainedProblem& p = sim.problem;
   const EnergyDrift& drift = r.drift;
   const std::string label = r.partial ? "INTERRUPTED after step " + std::to_string(r.steps_done) + " of " +
                                             std::to_string(sim.n_steps) + " (partial results)"
                                       : "";
   char energy[400];
   const bool damped = sim.spec.time.parameters.damping.active();
-  const bool worked = has_data_in_t(p);  // J balanced against the data's work W
+  const bool worked = sim.data_in_t;  // J balanced against the data's work W
   // the balance: J + W_d = J0 + W (W_d the damping's work, W the data's)
   const std::string balance = std::string(damped ? "J + W_d - J0" : "J - J0") + (worked ? " - W" : "");
   if (drift.scale_is_J0())
@@ -116,7 +113,7 @@ void print_run_paragraph(const RunOutcome& r, const nlohmann::ordered_json& j, c
   if (damped)
     std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy), "; damping dissipated W_d = %.6g",
                   r.totals.dissipated);
-  if (!sim.problem.friction.empty())
+  if (sim.with_friction)
     std::snprintf(energy + std::strlen(energy), sizeof energy - std::strlen(energy), "; friction took W_f = %.6g",
                   r.totals.friction_work);
   const int per = std::max(r.steps_done, 1);

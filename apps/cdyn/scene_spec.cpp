@@ -465,8 +465,6 @@ void check_partition(const SceneSpec& spec) {
   if (spec.physics.model != "membrane" && spec.physics.model != "elasticity")
     throw InputError("solver.partition: a run" + why + " takes a membrane or an elastic body (physics.model = \"" +
                      spec.physics.model + "\")");
-  for (const SceneSpec::Rigid& r : spec.obstacle.rigid)
-    if (r.friction != "none") throw InputError(r.friction_key + ": a run" + why + " takes no friction yet");
 }
 
 }  // namespace

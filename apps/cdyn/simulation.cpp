@@ -8,6 +8,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/gmsh_mesh.hpp"
 #include "cdyn/linalg/threads.hpp"
+#include "cdyn/problems/data_work.hpp"
 #include "cdyn/problems/elastic_contact.hpp"
 #include "cdyn/problems/oscillator.hpp"
 #include "cdyn/problems/scalar_wave.hpp"
@@ -225,6 +226,8 @@ void build_problem(Simulation& sim, const std::vector<int>* cells) {
   }
   const ElasticContactData d = elasticity(*sim.mesh, s);
   sim.problem = build_elastic_contact(*sim.mesh, d);
+  sim.with_friction = on_any_rank(sim, !sim.problem.friction.empty());
+  whole_friction_thresholds(sim);  // (on subdomains: integrated over every rank's facets)
   sim.dirichlet_parts = d.dirichlet_parts;
   sim.dirichlet_components = d.dirichlet_components;
   sim.components = sim.mesh->dim;
@@ -295,7 +298,7 @@ void check_backend(const Simulation& sim) {
                      "MUMPS's factorization on the petsc back end: no preconditioner");
   // (measured: with friction's inner QPs SNESVI leaves its pdas finish a CG that
   // diverges at the first steps, in the plane and in space; pdas and TAO run)
-  if (!sim.problem.friction.empty() && v.name == "snesvi")
+  if (sim.with_friction && v.name == "snesvi")
     throw InputError("solver.name: snesvi does not solve friction's step QPs on the petsc back end (its CG "
                      "diverges); use pdas or a tao_ solver");
 }
@@ -318,6 +321,18 @@ bool cg_path_pays(const Simulation& sim) {
   return sim.mesh->dim == 3 && p.n_free() - bubbles >= 10000 && sparse_mass(*p.mass) &&
          s.time.scheme != "discrete_gradient";
 }
+
+// time.scheme = "auto": the kernel's choice (recommended_scheme), except on the CG path
+// and on subdomains, where the energy-exact scheme's correction is not taken (it needs
+// solves below the QP tolerance, and does not run on subdomains): there the midpoint
+// rule with its full-step reconstruction, or with friction the kernel's choice for it
+// (docs/friction.md) by the mass alone.
+std::string auto_scheme(const Simulation& sim) {
+  if (!sim.spec.solver.options.pdas_cg_only && !sim.partition) return recommended_scheme(sim.problem);
+  if (sim.with_friction)
+    return sim.problem.mass->is_invertible() ? "midpoint_end" : "backward_euler";
+  return "midpoint";
+}
 }  // namespace
 
 Simulation make_simulation(const SceneSpec& spec, const std::vector<int>* cells) {
@@ -336,6 +351,7 @@ Simulation make_simulation(const SceneSpec& spec, const std::vector<int>* cells)
   sim.scene_name = s.name;
   sim.model = s.physics.model;
   with_scene_keys(s, [&] { build_problem(sim, cells); });
+  sim.data_in_t = on_any_rank(sim, has_data_in_t(sim.problem));
   sim.constrained_vertices = constrained_vertices(*sim.mesh, sim.problem);
   ConstrainedProblem& p = sim.problem;
 
@@ -345,13 +361,7 @@ Simulation make_simulation(const SceneSpec& spec, const std::vector<int>* cells)
   sim.output_every = s.output.every;
   sim.contact_every = s.output.contact_every;
   if (s.solver.linear_auto) sim.spec.solver.options.pdas_cg_only = cg_path_pays(sim);  // (refused with petsc)
-  // (the CG path's solves stop at the QP tolerance, above what the energy-exact
-  // scheme's correction needs: auto takes the midpoint with its full-step
-  // reconstruction then, docs/performance.md; and on subdomains, where the energy-exact
-  // scheme does not run)
-  sim.scheme_name = s.time.scheme != "auto"                           ? s.time.scheme
-                    : s.solver.options.pdas_cg_only || sim.partition ? "midpoint"
-                                                                     : recommended_scheme(p);
+  sim.scheme_name = s.time.scheme != "auto" ? s.time.scheme : auto_scheme(sim);
   // The full-step reconstruction's QP solved as the step's: by CG alone on that path.
   // On the petsc back end rank 0 solves it with the native pdas, by the same rule
   // (docs/distributed.md: there the factor of ZᵀAZ was rank 0's serial work), but not

@@ -57,6 +57,13 @@ struct Simulation {
   int components = 1;
   bool has_obstacle = false;
   CellMaterials materials;  // elasticity: ρ, λ, μ of every cell (materials by region), for σ in the fields
+
+  // What the outputs and the reductions over the ranks follow, alike on every rank (on
+  // subdomains a rank's cells may touch no rough obstacle, no moving one, no loaded part):
+  // friction nodes (problems/friction.hpp), data in t (problems/data_work.hpp), in the
+  // problem of any rank.
+  bool with_friction = false;
+  bool data_in_t = false;
 };
 
 // Builds and checks everything (bad input throws InputError naming the key).  On

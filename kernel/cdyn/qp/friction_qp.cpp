@@ -28,9 +28,10 @@ bool in_space(const FrictionConditions& f) {
 
 void slip_sets(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
                const Eigen::VectorXd& s, const Eigen::VectorXd& D, std::vector<char>& stick,
-               Eigen::VectorXd& direction) {
+               Eigen::VectorXd& direction, std::vector<double>* slip_length) {
   stick.assign(f.contacts.size(), 1);
   direction = Eigen::VectorXd::Zero(X.size());
+  if (slip_length) slip_length->assign(f.contacts.size(), 0.0);
   for (std::size_t k = 0; k < f.contacts.size(); ++k) {
     const std::vector<int>& t = f.contacts[k].tangential;
     double Dk = std::numeric_limits<double>::infinity(), norm = 0.0;
@@ -43,6 +44,7 @@ void slip_sets(const FrictionConditions& f, const Eigen::VectorXd& X, const Eige
     norm = std::sqrt(norm);
     if (norm <= s[k] / Dk) continue;
     stick[k] = 0;
+    if (slip_length) (*slip_length)[k] = norm - s[k] / Dk;
     for (std::size_t j = 0; j < t.size(); ++j) direction[t[j]] = y[j] / norm;
   }
 }
@@ -99,10 +101,13 @@ std::vector<ContactStatus> contact_status(const BoundQP& qp, const FrictionCondi
   return status;
 }
 
-double friction_work(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& threshold) {
+double friction_work(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& threshold,
+                     const std::vector<char>& counted) {
   double w = 0.0;
-  for (std::size_t k = 0; k < f.contacts.size(); ++k)
+  for (std::size_t k = 0; k < f.contacts.size(); ++k) {
+    if (!counted.empty() && !counted[k]) continue;
     if (const double d = slip_norm(f.contacts[k], X, f.reference); d > 0.0) w += threshold[k] * d;  // (s may be ∞ where d = 0)
+  }
   return w;
 }
 

@@ -79,10 +79,11 @@ bool in_space(const FrictionConditions& f);
 // Wohlmuth 2008): per contact y = d − λ_T/D_k, d = X_T − X̂_T and D_k the smallest of D
 // on its tangential unknowns; sticking where |y| ≤ s_k/D_k, else slipping along
 // σ = y/|y|.  stick has one entry per contact, direction σ on the tangential unknowns of
-// the slipping ones (0 elsewhere, size n).
+// the slipping ones (0 elsewhere, size n); slip_length, when given, the length of the
+// slip the rule predicts, |shrink(y, s_k/D_k)| = |y| − s_k/D_k (0 where sticking).
 void slip_sets(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
                const Eigen::VectorXd& s, const Eigen::VectorXd& D, std::vector<char>& stick,
-               Eigen::VectorXd& direction);
+               Eigen::VectorXd& direction, std::vector<double>* slip_length = nullptr);
 
 // The threshold of each contact: s, or μ max(λ_N, 0) from the reaction λ.
 Eigen::VectorXd friction_thresholds(const FrictionConditions& f, const Eigen::VectorXd& reaction);
@@ -96,8 +97,11 @@ double friction_residual(const BoundQP& qp, const FrictionConditions& f, const E
 std::vector<ContactStatus> contact_status(const BoundQP& qp, const FrictionConditions& f, const Eigen::VectorXd& X,
                                           const Eigen::VectorXd& reaction);
 
-// Σ_i s_i |X_T,i − X̂_T,i|: the work the friction forces take over the step's slip (≥ 0).
-double friction_work(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& threshold);
+// Σ_i s_i |X_T,i − X̂_T,i|: the work the friction forces take over the step's slip (≥ 0),
+// over the contacts `counted` marks (all when empty: a share of the QP counts those its
+// rank owns, StepSolver::owns).
+double friction_work(const FrictionConditions& f, const Eigen::VectorXd& X, const Eigen::VectorXd& threshold,
+                     const std::vector<char>& counted = {});
 
 // InputError for an index out of range or used twice, a tangential unknown with a
 // bound, a negative threshold or μ, or a reference of the wrong size.

@@ -53,7 +53,7 @@ class Midpoint final : public StepQPScheme {
     // Friction: eq. (14) has no friction term, so a reconstructed massless part would
     // slide freely; only a mass with no massless mode (Ker M = {0}: nothing to
     // reconstruct) keeps the frictional step's U^{n+1} as it is (docs/friction.md).
-    if (!p.friction.empty() && (!at_end_ || !p.mass->is_invertible()))
+    if (with_friction() && (!at_end_ || !p.mass->is_invertible()))
       throw InputError("scheme", std::string(at_end_ ? "midpoint_end" : "midpoint") +
                                      " with friction needs a mass without massless modes (P1/P1, P1/P0, consistent, "
                                      "lumped) and the constraint at the end of the step: use midpoint_end with such a "

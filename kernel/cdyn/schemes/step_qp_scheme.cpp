@@ -24,6 +24,9 @@ StepQPScheme::StepQPScheme(const ConstrainedProblem& p, StepSolver& solver, doub
   // Cholesky factor, instead of the saddle form, an LU of a matrix twice the size per
   // active set)
   build(a + s * damping.beta / dt, m + s * damping.alpha * dt);  // + (s/dt)(αM + βA)
+  // (on a share of the QP a rank whose cells touch no rough obstacle has no friction
+  // node, but solves (FQP) with the others)
+  with_friction_ = solver_.largest(p_.friction.empty() ? 0.0 : 1.0) > 0.0;
 }
 
 void StepQPScheme::build(double a, double m) {
@@ -175,7 +178,7 @@ void StepQPScheme::restore(const SchemeMemory& m) {
   if (m.number("condensed") == 0.0 && condensation_) end_condensation();
   has_last_ = load_warm_start(m, "step_qp", last_);
   for (const auto& [name, v] : remembered_) *v = m.vector_or_empty(name);
-  has_friction_last_ = !friction_.contacts.empty() && has_last_ && m.vectors.count("friction_stick");
+  has_friction_last_ = with_friction_ && has_last_ && m.vectors.count("friction_stick");
   if (has_friction_last_) {
     friction_last_ = FrictionResult{};
     friction_last_.qp = last_;
@@ -208,8 +211,10 @@ void StepQPScheme::solve_with_friction(State& s, StepStats& stats) {
     friction_last_ = solve_friction_ssn(qp_, friction_, solver_, options, warm);
   has_friction_last_ = true;
   const Eigen::VectorXd& X = friction_last_.qp.X;
-  stats.friction_work = slip_factor_ * friction_work(friction_, X, friction_last_.threshold);
   const int m = static_cast<int>(friction_.contacts.size());
+  std::vector<char> counted(m);  // (on a share, the contacts this rank owns: the ranks' works are summed)
+  for (int k = 0; k < m; ++k) counted[k] = solver_.owns(friction_.contacts[k].normal);
+  stats.friction_work = slip_factor_ * friction_work(friction_, X, friction_last_.threshold, counted);
   s.contact_status.resize(m);
   s.slip = Eigen::VectorXd::Zero(p_.n_free());
   for (int k = 0; k < m; ++k) {  // (friction_.contacts[k] is p_.friction[k] in the QP's numbering)
@@ -222,7 +227,7 @@ void StepQPScheme::solve_with_friction(State& s, StepStats& stats) {
 
 Eigen::VectorXd StepQPScheme::solve(const Eigen::VectorXd& r, State& s, StepStats& stats) {
   qp_.r = condensation_ ? condensation_->reduce(r) : r;  // r_c = r_v − S_vb S_bb⁻¹ r_b
-  if (friction_.contacts.empty()) {
+  if (!with_friction_) {
     last_ = solver_.solve(qp_, has_last_ ? &last_ : nullptr);
   } else {
     solve_with_friction(s, stats);

@@ -109,6 +109,10 @@ class StepQPScheme : public TimeScheme {
   // increment is δU: W_d = (α δUᵀMδU + β δUᵀAδU)/h ≥ 0 (0 without damping).
   double damping_work(const Eigen::VectorXd& dU, double h) const;
 
+  // Whether the step is (FQP): the problem has friction nodes (on a share of the QP, on
+  // any rank's cells).
+  bool with_friction() const { return with_friction_; }
+
   const ConstrainedProblem& p_;
   StepSolver& solver_;
   double dt_;
@@ -136,6 +140,7 @@ class StepQPScheme : public TimeScheme {
   FrictionConditions friction_;
   FrictionResult friction_last_;
   bool has_friction_last_ = false;
+  bool with_friction_ = false;  // the problem has friction nodes (on any rank)
   double slip_factor_ = 1.0, friction_tol_ = 1e-10;
 };
 

@@ -56,11 +56,10 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
   }
   // A share of the step QP (each rank its cells, StepSolver::solves_a_share): the schemes
   // whose every step is sums over cells and the one summed QP (and the full-step
-  // reconstruction's); discrete_gradient's line tests and the others' are not checked.
+  // reconstruction's, or friction's semismooth Newton iteration, which agree over the
+  // ranks); discrete_gradient's line tests and the others' are not checked.
   if (solver.solves_a_share() && name != "backward_euler" && name != "midpoint" && name != "midpoint_end")
     throw InputError("scheme", name + " does not run on subdomains yet (backward_euler, midpoint and midpoint_end do)");
-  if (solver.solves_a_share() && !problem.friction.empty())
-    throw InputError("scheme", "friction does not run on subdomains yet");
   const bool c = parameters.condense;
   if (name == "backward_euler") return make_backward_euler(problem, solver, dt, parameters);
   if (name == "midpoint") return make_midpoint(problem, solver, dt, parameters);

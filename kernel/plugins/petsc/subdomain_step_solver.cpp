@@ -50,10 +50,31 @@ class SubdomainStepSolver : public StepSolver {
 
   int count_in_whole(const std::vector<int>& unknowns) const override {
     int mine = 0;
-    for (int i : unknowns) mine += petsc_of_.at(i) >= q_.first && petsc_of_.at(i) < q_.last;
+    for (int i : unknowns) mine += owns(i);
     MPI_Allreduce(MPI_IN_PLACE, &mine, 1, MPI_INT, MPI_SUM, world());
     return mine;
   }
+
+  bool owns(int unknown) const override {
+    const PetscInt i = petsc_of_.at(unknown);
+    return i >= q_.first && i < q_.last;
+  }
+
+  // Σ_r P_rᵀ x_r at this rank's unknowns, as r is summed (assemble_vectors).
+  Eigen::VectorXd summed(const Eigen::VectorXd& x) const override {
+    if (x.size() != static_cast<Eigen::Index>(petsc_of_.size()))
+      throw InputError(name() + ": a vector of " + std::to_string(x.size()) + " entries to sum, the subdomain has " +
+                       std::to_string(petsc_of_.size()) + " unknowns");
+    Owned<Vec, VecDestroy> sum;
+    check(VecCreateMPI(world(), q_.last - q_.first, n_, sum.out()), "VecCreateMPI");
+    check(VecSetValues(sum, static_cast<PetscInt>(x.size()), petsc_of_.data(), x.data(), ADD_VALUES), "VecSetValues");
+    check(VecAssemblyBegin(sum), "VecAssemblyBegin");
+    check(VecAssemblyEnd(sum), "VecAssemblyEnd");
+    make_scatter(sum);
+    return values_at(sum);
+  }
+
+  double largest(double x) const override { return global_max(x); }
 
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
     const auto start = std::chrono::steady_clock::now();
@@ -153,15 +174,20 @@ class SubdomainStepSolver : public StepSolver {
     for (Vec* v : {&q_.r, &q_.lower, &q_.upper, &q_.X, &q_.reaction, &diagonal_})
       if (!*v) check(MatCreateVecs(q_.S, v, nullptr), "MatCreateVecs");
     check(MatGetDiagonal(q_.S, diagonal_), "MatGetDiagonal");
-    if (!to_local_) {  // this rank's unknowns, gathered from the owners' rows
-      Owned<IS, ISDestroy> from;
-      check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(petsc_of_.size()), petsc_of_.data(),
-                            PETSC_COPY_VALUES, from.out()),
-            "ISCreateGeneral");
-      check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(petsc_of_.size()), &local_), "VecCreateSeq");
-      check(VecScatterCreate(q_.X, from, local_, nullptr, &to_local_), "VecScatterCreate");
-    }
+    make_scatter(q_.X);
     last_lower_.resize(0), last_X_.resize(0);  // the vectors are sent again
+  }
+
+  // The scatter from S's layout (that of v) to this rank's unknowns, gathered from the
+  // owners' rows; once a numbering.
+  void make_scatter(Vec v) const {
+    if (to_local_) return;
+    Owned<IS, ISDestroy> from;
+    check(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(petsc_of_.size()), petsc_of_.data(),
+                          PETSC_COPY_VALUES, from.out()),
+          "ISCreateGeneral");
+    check(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(petsc_of_.size()), &local_), "VecCreateSeq");
+    check(VecScatterCreate(v, from, local_, nullptr, &to_local_), "VecScatterCreate");
   }
 
   // v's entries at this rank's unknowns (v in S's layout).
@@ -238,8 +264,8 @@ class SubdomainStepSolver : public StepSolver {
   CheckedMatrices checked_;
   DistributedQP q_;
   Vec diagonal_ = nullptr;  // diag S, for the KKT measure and the active set
-  VecScatter to_local_ = nullptr;  // S's layout → this rank's unknowns
-  Vec local_ = nullptr;
+  mutable VecScatter to_local_ = nullptr;  // S's layout → this rank's unknowns (made when first needed)
+  mutable Vec local_ = nullptr;
   Eigen::VectorXd last_lower_, last_upper_, last_X_, last_reaction_;  // as the distributed vectors hold them
 };
 
