@@ -55,14 +55,15 @@ class StepSolver {
   // share's solver counts those its rank owns and sums over the ranks (collective), so
   // that a vertex two subdomains hold is counted once; any other, their number.
   virtual int count_in_whole(const std::vector<int>& unknowns) const { return static_cast<int>(unknowns.size()); }
-  // What a method around the solver (friction's semismooth Newton, qp/friction_ssn.cpp)
-  // needs of the whole problem when the solver takes a share: whether this rank counts
-  // the unknown in sums over the whole (the lowest rank holding it); a vector of sums
-  // over cells (r, diag S) summed over the ranks holding each unknown; a number's
-  // largest value over the ranks.  The last two are collective.  Any other solver: true,
-  // x and x.
+  // What a method around the solver (friction's semismooth Newton, qp/friction_ssn.cpp;
+  // the discrete gradient's energy iteration) needs of the whole problem when the solver
+  // takes a share: whether this rank counts the unknown in sums over the whole (the
+  // lowest rank holding it); a vector of sums over cells (r, diag S) summed over the
+  // ranks holding each unknown; a number's sum and its largest value over the ranks.
+  // All but the first are collective.  Any other solver: true, x, x and x.
   virtual bool owns(int /*unknown*/) const { return true; }
   virtual Eigen::VectorXd summed(const Eigen::VectorXd& x) const { return x; }
+  virtual double total(double x) const { return x; }
   virtual double largest(double x) const { return x; }
 };
 

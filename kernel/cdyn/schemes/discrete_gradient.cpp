@@ -86,13 +86,13 @@ class DiscreteGradient final : public StepQPScheme {
         full_step_(std::move(full_step)),
         energy_tol_(parameters.energy_tol),
         tol_(parameters.tol),
-        autonomous_(!has_data_in_t(p)) {}
+        autonomous_(solver.largest(has_data_in_t(p) ? 1.0 : 0.0) == 0.0) {}
   std::string name() const override { return "discrete_gradient"; }
   FullSteps full_steps() const override { return FullSteps::Reconstructed; }
 
   void initialize(State& s) override {
     s.U = full_step_(s.U, s.t);
-    psi_ = p_.potential_energy(s.U, s.t);
+    psi_ = whole(p_.potential_energy(s.U, s.t));
     initialized_ = true;
   }
 
@@ -148,7 +148,7 @@ class DiscreteGradient final : public StepQPScheme {
     Eigen::VectorXd r0 = inertia(4 * c * c + 2 * damping_.alpha * c, s.U, 2 * c, s.V) + p_.load(s.t + 0.5 * h);
     if (damping_.beta > 0.0) r0 += 2 * damping_.beta * c * symmetric_times(p_.A, s.U);
     const Eigen::VectorXd BtV = p_.mass->momentum(s.V);
-    const double kinetic = p_.mass->kinetic_energy(s.V);
+    const double kinetic = whole(p_.mass->kinetic_energy(s.V));
     const double t0 = s.t, t1 = s.t + h;
     DataIncrement data;
     if (!autonomous_) data = data_increment(p_, t0, t1);
@@ -158,20 +158,24 @@ class DiscreteGradient final : public StepQPScheme {
     // direction of the uncorrected step (β = 0), the same for every β of the step.
     struct Iterate {
       double beta = 0, dH = 0, psi1 = 0, dq2 = 0, terms = 0, work = 0, dissipated = 0;
+      double dissipated_here = 0;  // this rank's share of W_d (StepStats::dissipated)
       Eigen::VectorXd X, U1, W1, reaction;
       Eigen::VectorXd MD;                      // M (X − Uⁿ)
       StepQPScheme::Point qp;                  // the two QPs' solved points (on_line below)
       FullStepReconstruction::Point full_step;
     };
     // ΔH of an iterate whose X, M (X − Uⁿ), W1 and reaction are set.
+    // (on a share of the QP each term is the sum of the ranks' sums over cells, the
+    // reaction's work counted by the owners: every rank then takes the same decisions)
     auto evaluate = [&](Iterate& it) {
-      it.psi1 = p_.potential_energy(it.W1, t1);
-      if (!autonomous_) it.work = data.work(p_, it.X, it.reaction);
+      it.psi1 = whole(p_.potential_energy(it.W1, t1));
+      if (!autonomous_) it.work = whole(data.work(p_, it.X, owned_part(it.reaction)));
       const Eigen::VectorXd D = it.X - s.U;
-      const double DMD = D.dot(it.MD);
+      const double DMD = whole(D.dot(it.MD));
       it.dq2 = 4 * DMD;  // |Δq|²_C = ΔUᵀ M ΔU
-      const double pull = 4 * c * BtV.dot(D);
-      it.dissipated = damping_work(2.0 * D, h);  // W_d = 4c (α_M DᵀMD + β_K DᵀAD)
+      const double pull = whole(4 * c * BtV.dot(D));
+      it.dissipated_here = damping_work(2.0 * D, h);  // W_d = 4c (α_M DᵀMD + β_K DᵀAD)
+      it.dissipated = whole(it.dissipated_here);
       it.dH = 8 * c * c * DMD - pull + it.dissipated + it.psi1 - psi_ - it.work;  // H^{n+1} + W_d − Hⁿ − Δ_tΨ
       // the size of what ΔH cancels: its round-off is a few ε of this
       it.terms = kinetic + 8 * c * c * DMD + std::abs(pull) + it.dissipated + std::abs(it.psi1) + std::abs(psi_) +
@@ -210,9 +214,10 @@ class DiscreteGradient final : public StepQPScheme {
     // right-hand side, solution and reaction, are affine in β there; their interpolates
     // are the iterate at β wherever both QPs' own tests pass (StepQPScheme::on_line,
     // FullStepReconstruction::on_line).  Nothing otherwise: then β is solved for.
+    // (Not on a share of the QP: the two QPs' tests read this rank's share only.)
     auto on_line = [&](const Iterate& a, const Iterate& b, double beta,
                        const Eigen::VectorXd& d) -> std::optional<Iterate> {
-      if (a.beta == b.beta || a.full_step.y.size() == 0 || a.qp.active != b.qp.active ||
+      if (solver_.solves_a_share() || a.beta == b.beta || a.full_step.y.size() == 0 || a.qp.active != b.qp.active ||
           a.full_step.active != b.full_step.active)
         return std::nullopt;  // (no points: (14) by multipliers)
       const double theta = (beta - a.beta) / (b.beta - a.beta);
@@ -314,9 +319,13 @@ class DiscreteGradient final : public StepQPScheme {
     s.t += h;
     psi_ = a.psi1;
     stats.external_work = stats.external_work.value_or(0.0) + a.work;
-    stats.dissipated += a.dissipated;
+    stats.dissipated += a.dissipated_here;
     return true;
   }
+
+  // A sum over cells (an energy, a work) of the whole problem: on a share, the ranks'
+  // sums added.
+  double whole(double x) const { return solver_.total(x); }
 
   static constexpr int kMaxIterations = 30;
   static constexpr int kMaxHalvings = 10;
@@ -344,9 +353,12 @@ std::unique_ptr<TimeScheme> make_discrete_gradient(const ConstrainedProblem& p, 
   // (Re-measured with the correction along the uncorrected step and the iterates on the
   // line: CG while the set moves gave the same time within 0.01–0.1 of the ratio to
   // midpoint in five cells, five interleaved runs each.)
+  // (on a share of the step QP the ranks solve the reconstruction's together: the step
+  // solver's companion)
   FullStepReconstruction full_step(p, parameters.tol, false,
                                    parameters.reconstruct_by_cg ? FullStepReconstruction::Solves::CgOnly
-                                                                : FullStepReconstruction::Solves::Direct);
+                                                                : FullStepReconstruction::Solves::Direct,
+                                   &solver);
   // The scheme is the Hamiltonian system in q: it needs the massless part to be
   // determined by (14) (the seed's condition (12)).  Without massless directions (Ker B =
   // {0}: P1/P1, P1/P0, consistent, lumped) the constrained unknowns carry inertia, the

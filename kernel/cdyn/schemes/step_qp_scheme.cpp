@@ -103,6 +103,14 @@ void StepQPScheme::map_friction() {
   has_friction_last_ = false;
 }
 
+Eigen::VectorXd StepQPScheme::owned_part(const Eigen::VectorXd& x) const {
+  if (!solver_.solves_a_share()) return x;
+  Eigen::VectorXd out = x;
+  for (int j = 0; j < static_cast<int>(qp_.lower.size()); ++j)  // (the QP's unknowns)
+    if (!solver_.owns(j)) out[condensation_ ? condensation_->kept_unknowns()[j] : j] = 0.0;
+  return out;
+}
+
 void StepQPScheme::set_factors(double a, double m) {
   if (a == a_ && m == m_) return;
   build(a, m);

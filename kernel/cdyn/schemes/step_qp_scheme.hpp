@@ -113,6 +113,11 @@ class StepQPScheme : public TimeScheme {
   // any rank's cells).
   bool with_friction() const { return with_friction_; }
 
+  // x on the problem's free unknowns with those another rank owns set to 0 (on a share
+  // of the QP, StepSolver::owns; a condensed bubble is its cell's rank's): summed over
+  // the ranks, a sum over unknowns counts each once.  x itself on one process.
+  Eigen::VectorXd owned_part(const Eigen::VectorXd& x) const;
+
   const ConstrainedProblem& p_;
   StepSolver& solver_;
   double dt_;

@@ -56,10 +56,12 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
   }
   // A share of the step QP (each rank its cells, StepSolver::solves_a_share): the schemes
   // whose every step is sums over cells and the one summed QP (and the full-step
-  // reconstruction's, or friction's semismooth Newton iteration, which agree over the
-  // ranks); discrete_gradient's line tests and the others' are not checked.
-  if (solver.solves_a_share() && name != "backward_euler" && name != "midpoint" && name != "midpoint_end")
-    throw InputError("scheme", name + " does not run on subdomains yet (backward_euler, midpoint and midpoint_end do)");
+  // reconstruction's, friction's semismooth Newton iteration and the discrete gradient's
+  // energy iteration, which agree over the ranks); the others are not checked.
+  if (solver.solves_a_share() && name != "backward_euler" && name != "midpoint" && name != "midpoint_end" &&
+      name != "discrete_gradient")
+    throw InputError("scheme", name + " does not run on subdomains yet (backward_euler, midpoint, midpoint_end and "
+                                      "discrete_gradient do)");
   const bool c = parameters.condense;
   if (name == "backward_euler") return make_backward_euler(problem, solver, dt, parameters);
   if (name == "midpoint") return make_midpoint(problem, solver, dt, parameters);

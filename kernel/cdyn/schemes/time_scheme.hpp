@@ -64,6 +64,9 @@ struct StepStats {
   // ≥ 0 (qp/friction_qp.hpp; 0 without friction): the midpoint rule's balance becomes
   // J^{n+1} + W_d + W_f − Jⁿ = (U^{n+1} − Uⁿ)_Nᵀ λ_N, the normal contact's work.
   double friction_work = 0.0;
+  // (On a share of the step QP, StepSolver::solves_a_share: dissipated and friction_work
+  // are this rank's part, which the program sums over the ranks; external_work is the
+  // whole problem's.)
 };
 
 // How a scheme's full-step states U^{n+1} get their massless part Ker B (eq. 14):

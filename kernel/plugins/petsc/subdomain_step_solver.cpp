@@ -74,6 +74,10 @@ class SubdomainStepSolver : public StepSolver {
     return values_at(sum);
   }
 
+  double total(double x) const override {
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_SUM, world());
+    return x;
+  }
   double largest(double x) const override { return global_max(x); }
 
   QPResult solve(const BoundQP& qp, const QPResult* warm_start) override {
