@@ -137,11 +137,14 @@ int main(int argc, char** argv) {
   // mesh file its machine cannot read) would leave the others waiting for it in their
   // next collective call: it waits for them a while, then says why and ends the job.
   const bool failed_here = !failure.empty();
+  // (each line one write: mpirun forwards a process's stderr as it comes, and its own
+  // notice of the abort came between two pieces of the line under load)
   if (run_options.every_rank && failed_here && !cdyn::petsc::ranks_meet(kWaitForTheOtherRanks)) {
-    std::cerr << failure << " (rank " << cdyn::petsc::rank() << "; the other ranks did not stop with it: the job is ended)\n";
+    std::cerr << failure + " (rank " + std::to_string(cdyn::petsc::rank()) +
+                     "; the other ranks did not stop with it: the job is ended)\n";
     cdyn::petsc::abort_all(status);
   }
-  if (failed_here && cdyn::petsc::rank() == 0) std::cerr << failure << "\n";
+  if (failed_here && cdyn::petsc::rank() == 0) std::cerr << failure + "\n";
   // (rank 0 tells the other ranks to quit, if any, and PETSc ends, if it was started)
   return cdyn::petsc::end_process(status);
 }

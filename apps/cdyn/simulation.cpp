@@ -323,10 +323,10 @@ bool cg_path_pays(const Simulation& sim) {
 }
 
 // time.scheme = "auto": the kernel's choice (recommended_scheme), except on the CG path
-// and on subdomains, where the energy-exact scheme's correction is not taken (it needs
-// solves below the QP tolerance, and does not run on subdomains): there the midpoint
-// rule with its full-step reconstruction, or with friction the kernel's choice for it
-// (docs/friction.md) by the mass alone.
+// and on subdomains, whose CG solves stop at the QP tolerance, above what the
+// energy-exact scheme's correction needs (it runs there when asked for): there the
+// midpoint rule with its full-step reconstruction, or with friction the kernel's choice
+// for it (docs/friction.md) by the mass alone.
 std::string auto_scheme(const Simulation& sim) {
   if (!sim.spec.solver.options.pdas_cg_only && !sim.partition) return recommended_scheme(sim.problem);
   if (sim.with_friction)
