@@ -18,6 +18,7 @@
 #include <random>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/qp/checks.hpp"
 #include "cdyn/qp/step_solver.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
 
@@ -790,6 +791,42 @@ TEST(QPSolvers, BadInputIsAClearError) {
   QPOptions bad_tol;
   bad_tol.tol = -1;
   EXPECT_THROW(cdyn::make_step_solver("pdas", bad_tol), cdyn::InputError);
+}
+
+// check_problem's symmetry test (one pass over S, each lower entry matched with its
+// mirror) against the dense criterion max |S − Sᵀ| > 1e-10 max |S|: random patterns,
+// entries changed or added on one side only, above and below the tolerance.
+TEST(QPChecks, SymmetryAsTheDenseCriterion) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> index(0, 29);
+  int refused = 0, passed = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    MatrixXd dense = MatrixXd::Zero(30, 30);
+    for (int k = 0; k < 60; ++k) {
+      const int i = index(rng), j = index(rng);
+      dense(i, j) = dense(j, i) = u(rng);
+    }
+    for (int i = 0; i < 30; ++i) dense(i, i) = 10.0;
+    const double size = trial % 3 == 0 ? 1e-12 : 1e-6;  // (below and above 1e-10 · 10)
+    for (int k = 0; k < trial % 4; ++k) dense(index(rng), index(rng)) += size * (1.0 + u(rng));
+    BoundQP qp;
+    qp.S = dense.sparseView();
+    qp.r = VectorXd::Zero(30);
+    qp.lower = VectorXd::Constant(30, -1.0);
+    qp.upper = VectorXd::Constant(30, 1.0);
+    const bool unsymmetric = (dense - dense.transpose()).cwiseAbs().maxCoeff() > 1e-10 * dense.cwiseAbs().maxCoeff();
+    bool threw = false;
+    try {
+      cdyn::check_problem(qp, true);
+    } catch (const cdyn::InputError& e) {
+      threw = std::string(e.what()).find("not symmetric") != std::string::npos;
+    }
+    EXPECT_EQ(threw, unsymmetric) << "trial " << trial;
+    (threw ? refused : passed) += 1;
+  }
+  EXPECT_GT(refused, 50);  // both outcomes met
+  EXPECT_GT(passed, 50);
 }
 
 TEST(QPSolvers, NonConvergenceIsReportedWithResidualAndIterations) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
@@ -20,17 +21,42 @@ void check_finite(const SparseMatrix& M, const std::string& what) {
                          std::to_string(j) + ") = " + to_text(it.value()) + " is not finite");
 }
 
+// M − Mᵀ within 1e-10 of M's largest entry, an entry without its mirror measured against
+// 0, in one pass over M and no copy of it: the columns are visited in order, and the
+// mirror (j, i) of a lower entry (i, j), i > j, is the next unvisited upper entry of
+// column i (the upper rows of a column come in increasing order, as the columns j that
+// mirror them).  The check runs whenever a solver meets a new S — at every outer
+// iteration of friction's loop on subdomains (qp/friction_ssn.cpp), where the transpose
+// and difference made before took 9 % of the run.
 void check_symmetric(const SparseMatrix& M, const std::string& what) {
-  const SparseMatrix T = M.transpose();
+  if (!M.isCompressed()) {
+    SparseMatrix compressed = M;
+    compressed.makeCompressed();
+    return check_symmetric(compressed, what);
+  }
+  const int n = static_cast<int>(M.outerSize());
+  const int* start = M.outerIndexPtr();
+  const int* row = M.innerIndexPtr();
+  const double* value = M.valuePtr();
   double max_entry = 0.0;
-  for (int j = 0; j < M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it) max_entry = std::max(max_entry, std::abs(it.value()));
-  const SparseMatrix diff = M - T;
-  for (int j = 0; j < diff.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(diff, j); it; ++it)
-      if (std::abs(it.value()) > 1e-10 * max_entry)
-        throw InputError("BoundQP: " + what + " is not symmetric: entry (" + std::to_string(it.row()) + "," +
-                         std::to_string(j) + ") differs from its transpose by " + to_text(it.value()));
+  for (int k = 0; k < start[n]; ++k) max_entry = std::max(max_entry, std::abs(value[k]));
+  auto check = [&](int i, int j, double difference) {  // at (i, j): M_ij − M_ji
+    if (std::abs(difference) > 1e-10 * max_entry)
+      throw InputError("BoundQP: " + what + " is not symmetric: entry (" + std::to_string(i) + "," +
+                       std::to_string(j) + ") differs from its transpose by " + to_text(difference));
+  };
+  std::vector<int> next(start, start + n);  // each column's next unmatched upper entry
+  for (int j = 0; j < n; ++j)
+    for (int k = start[j]; k < start[j + 1]; ++k) {
+      const int i = row[k];
+      if (i <= j) continue;  // (upper entries: matched from their mirrors' columns)
+      // column i's upper entries above row j have no mirror
+      for (; next[i] < start[i + 1] && row[next[i]] < j; ++next[i]) check(row[next[i]], i, value[next[i]]);
+      const bool mirrored = next[i] < start[i + 1] && row[next[i]] == j;
+      check(i, j, value[k] - (mirrored ? value[next[i]++] : 0.0));
+    }
+  for (int i = 0; i < n; ++i)  // the upper entries left unmatched
+    for (; next[i] < start[i + 1] && row[next[i]] < i; ++next[i]) check(row[next[i]], i, value[next[i]]);
 }
 
 }  // namespace
