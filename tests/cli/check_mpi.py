@@ -421,6 +421,15 @@ for what, (sets, key) in SLAB_ERRORS.items():
     mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
     check(done.returncode == 2 and len(mine) == 1 and mine[0].startswith("cdyn: error: " + key),
           f"subdomains, {what}: exit {done.returncode}, {mine}")
+# Friction with the energy-exact scheme, on four ranks one of which has no rough vertex:
+# refused by every rank at once (rank 0's plain line, not a lone rank's after its wait)
+done = subprocess.run(command(4, rough_disk[0], os.path.join(work, "error"),
+                              ['contact.friction="coulomb"', 'contact.mu="0.2"', "time.scheme=discrete_gradient", "time.T=1e-4"] +
+                              SUBDOMAINS[:1] + ["solver.partition=graph"]),
+                      env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120)
+mine = [line for line in done.stderr.splitlines() if line.startswith("cdyn:")]
+check(done.returncode == 2 and len(mine) == 1 and mine[0].startswith("cdyn: error: time.scheme") and
+      "(rank" not in mine[0], f"subdomains, friction with discrete_gradient on 4 ranks: exit {done.returncode}, {mine}")
 # An error on one rank only (its mesh file missing: mpirun's MPMD form gives each rank its
 # own arguments): the other waits in a collective call; the failed rank waits 10 s for
 # it, then says why and ends the job with its exit status.

@@ -48,7 +48,9 @@ std::unique_ptr<TimeScheme> make_time_scheme(const std::string& name, const Cons
                                              StepSolver& solver, double dt, const SchemeParameters& parameters) {
   check_damping(name, parameters.damping);
   // Friction is in the one-step schemes whose step unknown is U^{n+1} (docs/friction.md).
-  if (!problem.friction.empty() && name != "backward_euler" && name != "midpoint_end" && name != "midpoint") {
+  // (on a share of the QP: friction nodes on any rank's cells, so that every rank refuses)
+  const bool friction = solver.largest(problem.friction.empty() ? 0.0 : 1.0) > 0.0;
+  if (friction && name != "backward_euler" && name != "midpoint_end" && name != "midpoint") {
     const std::vector<std::string> known = time_scheme_names();
     if (std::find(known.begin(), known.end(), name) != known.end())
       throw InputError("scheme", name + " takes no friction (nodal friction is in backward_euler, and in midpoint_end "
