@@ -35,8 +35,6 @@ std::vector<int> graph_cells(const Mesh& mesh) {
   return cells;
 }
 
-}  // namespace
-
 // The cells `cells` of this rank, checked to deal out every cell of the mesh once over
 // the ranks (collective).
 std::vector<int> given_cells(const Mesh& mesh, const std::vector<int>& cells) {
@@ -53,6 +51,8 @@ std::vector<int> given_cells(const Mesh& mesh, const std::vector<int>& cells) {
                      "each (resume on as many ranks as the stopped run had)");
   return cells;
 }
+
+}  // namespace
 
 Partition make_partition(Mesh whole, const std::string& how, const std::vector<int>* cells) {
   Partition part;
@@ -155,34 +155,43 @@ Eigen::VectorXd owned_part(const Simulation& sim, const Eigen::VectorXd& x) {
   return out;
 }
 
-std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPressure& contact) {
-  std::vector<double> out;
-  for (const ContactPressure::Vertex& c : contact.vertices()) out.push_back(c.weight);
-  if (!sim.partition) return out;
+namespace {
+
+// Integrals over Γ_C at contact vertices of this rank's mesh (its own facets' shares),
+// each summed over the ranks holding its vertex: the whole Γ_C's (collective).  A vertex
+// has one contact node (the nearest obstacle's, problems/elastic_contact.hpp).
+std::vector<double> over_whole_boundary(const Simulation& sim, const std::vector<int>& vertices,
+                                        const std::vector<double>& shares) {
   const SubMesh& sub = sim.partition->sub;
-  std::vector<double> w(sim.partition->whole.n_vertices(), 0.0);
-  for (const ContactPressure::Vertex& c : contact.vertices()) w[sub.vertex[c.vertex]] += c.weight;
-  summed(sim, w);
-  out.clear();
-  for (const ContactPressure::Vertex& c : contact.vertices()) out.push_back(w[sub.vertex[c.vertex]]);
+  std::vector<double> whole(sim.partition->whole.n_vertices(), 0.0);
+  for (std::size_t i = 0; i < vertices.size(); ++i) whole[sub.vertex[vertices[i]]] += shares[i];
+  summed(sim, whole);
+  std::vector<double> out;
+  for (int v : vertices) out.push_back(whole[sub.vertex[v]]);
   return out;
+}
+
+}  // namespace
+
+std::vector<double> whole_contact_weights(const Simulation& sim, const ContactPressure& contact) {
+  std::vector<int> vertices;
+  std::vector<double> w;
+  for (const ContactPressure::Vertex& c : contact.vertices()) vertices.push_back(c.vertex), w.push_back(c.weight);
+  return sim.partition ? over_whole_boundary(sim, vertices, w) : w;
 }
 
 void whole_friction_thresholds(Simulation& sim) {
   if (!sim.partition || !sim.with_friction) return;
   ConstrainedProblem& p = sim.problem;
-  const SubMesh& sub = sim.partition->sub;
-  const int obstacles = static_cast<int>(sim.spec.obstacle.rigid.size());
-  auto item = [&](const FrictionNode& f) {  // (its vertex in the whole mesh, its obstacle)
-    const ConstrainedProblem::ContactNode& c = p.contact_nodes[f.node];
-    return sub.vertex[c.vertex] * obstacles + c.obstacle;
-  };
-  std::vector<double> s(static_cast<std::size_t>(sim.partition->whole.n_vertices()) * obstacles, 0.0);
-  for (const FrictionNode& f : p.friction)
-    if (f.law == FrictionLaw::Tresca) s[item(f)] += f.threshold;
-  summed(sim, s);
-  for (FrictionNode& f : p.friction)
-    if (f.law == FrictionLaw::Tresca) f.threshold = s[item(f)];
+  std::vector<int> vertices;
+  std::vector<double> s;  // (0 for Coulomb's nodes, whose threshold is μ λ_N)
+  for (const FrictionNode& f : p.friction) {
+    vertices.push_back(p.contact_nodes[f.node].vertex);
+    s.push_back(f.law == FrictionLaw::Tresca ? f.threshold : 0.0);
+  }
+  s = over_whole_boundary(sim, vertices, s);
+  for (std::size_t k = 0; k < p.friction.size(); ++k)
+    if (p.friction[k].law == FrictionLaw::Tresca) p.friction[k].threshold = s[k];
 }
 
 namespace {

@@ -122,6 +122,7 @@ FieldsWriter::FieldsWriter(const std::filesystem::path& out, const Mesh& mesh) :
 
 void FieldsWriter::write(int step, double t, const Eigen::VectorXd& U_full, const Eigen::VectorXd& rate_full,
                          const Eigen::VectorXd& reaction_xy, const ExtraFields& extra) {
+  if (!problem_) throw InputError("FieldsWriter: made without a problem, it writes given arrays only");
   ExtraFields arrays{state_arrays(mesh_, *problem_, U_full, rate_full, reaction_xy), extra.cell};
   arrays.point.insert(arrays.point.end(), extra.point.begin(), extra.point.end());
   write(step, t, arrays);
