@@ -29,6 +29,8 @@
 // "cg": no factor, so no triangular solve left on one core).
 #include <benchmark/benchmark.h>
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -163,6 +165,10 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // freed memory kept in the heap, as the cdyn program does (apps/cdyn/main.cpp), so that
+  // the steps timed here allocate as a run's steps do
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, -1);
   register_all();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

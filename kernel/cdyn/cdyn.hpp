@@ -27,6 +27,7 @@
 #include "cdyn/linalg/masked_cg.hpp"
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
+#include "cdyn/linalg/supernodal_solve.hpp"
 #include "cdyn/linalg/symmetric_gauss_seidel.hpp"
 #include "cdyn/linalg/threads.hpp"
 // mass/

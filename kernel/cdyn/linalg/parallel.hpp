@@ -19,10 +19,9 @@
 //     thread, and the block sums added in order by one thread.
 // Loops with less than kParallelWork entries to read stay on one thread, since a
 // parallel region costs microseconds; by the two rules that changes no result either.
-// The sparse triangular solves of a Cholesky factor are not among these loops: each
-// unknown waits for the ones before it.  CHOLMOD's supernodes give the BLAS dense blocks,
-// which it threads by itself, with its own thread count and its own round-off
-// (linalg/threads.hpp).
+// The sparse triangular solves of a supernodal Cholesky factor follow the same rule by
+// another route: each unknown waits for the ones before it, but two disjoint subtrees of
+// the elimination tree do not wait for each other (linalg/supernodal_solve.hpp).
 #pragma once
 
 #include <Eigen/Core>

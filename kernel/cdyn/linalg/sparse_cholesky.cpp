@@ -9,6 +9,9 @@
 #include <string>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
+#include "cdyn/linalg/supernodal_solve.hpp"
+#include "cdyn/linalg/threads.hpp"
 
 namespace cdyn {
 
@@ -23,6 +26,10 @@ struct SparseCholesky::Impl {
   mutable cholmod_dense* X = nullptr;  // solve workspaces (cholmod_solve2)
   mutable cholmod_dense* Y = nullptr;
   mutable cholmod_dense* E = nullptr;
+  // A supernodal factor's sweeps by subtrees (linalg/supernodal_solve.hpp), cut for the
+  // thread count of the last solve; reset by each analysis.
+  mutable std::unique_ptr<SupernodalSolve> sweeps;
+  mutable Eigen::VectorXd y;  // the permuted right-hand side
 
   Impl() {
     cholmod_start(&common);
@@ -63,6 +70,17 @@ struct SparseCholesky::Impl {
     A.packed = 1;
     return A;
   }
+  static SupernodalFactor supernodal(const cholmod_factor& F) {
+    SupernodalFactor s;
+    s.n = static_cast<int>(F.n);
+    s.nsuper = static_cast<int>(F.nsuper);
+    s.super = static_cast<const int*>(F.super);
+    s.pi = static_cast<const int*>(F.pi);
+    s.px = static_cast<const int*>(F.px);
+    s.s = static_cast<const int*>(F.s);
+    s.x = static_cast<const double*>(F.x);
+    return s;
+  }
   void check(const char* what) const {
     if (common.status < CHOLMOD_OK)
       throw NumericalError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) + ")");
@@ -86,6 +104,7 @@ void SparseCholesky::analyze_with(const SparseMatrix& S, const std::vector<int>*
   Impl& m = *impl_;
   m.free_factor(m.L);
   m.free_factor(m.symbolic);
+  m.sweeps.reset();
   cholmod_sparse A = Impl::view(S);
   if (ordering) {
     const int saved_nmethods = m.common.nmethods, saved_ordering = m.common.method[0].ordering;
@@ -146,6 +165,25 @@ bool SparseCholesky::factorized() const { return impl_->L != nullptr; }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   Impl& m = *impl_;
+  if (m.L->is_super && m.L->is_ll) {
+    // Our sweeps by subtrees, on the kernel's threads (CHOLMOD's are one sweep).
+    const SupernodalFactor L = Impl::supernodal(*m.L);
+    const int threads = thread_count();
+    if (!m.sweeps || m.sweeps->threads() != threads)
+      m.sweeps = std::make_unique<SupernodalSolve>(L, threads);
+    const int* perm = static_cast<const int*>(m.L->Perm);
+    const int n = static_cast<int>(b.size());
+    m.y.resize(n);
+    double* y = m.y.data();
+    // (a permutation: every entry written by one thread)
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+    for (int k = 0; k < n; ++k) y[k] = b[perm[k]];
+    m.sweeps->solve(L, y);
+    Eigen::VectorXd x(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+    for (int k = 0; k < n; ++k) x[perm[k]] = y[k];
+    return x;
+  }
   cholmod_dense B;
   std::memset(&B, 0, sizeof B);
   B.nrow = b.size();

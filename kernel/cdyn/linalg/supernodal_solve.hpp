@@ -1,0 +1,67 @@
+// supernodal_solve.hpp — the forward and back solves L z = y, Lᵀ w = z with a supernodal
+// Cholesky factor (CHOLMOD's layout), on several threads by subtrees of its elimination
+// tree, with the same bits whatever the thread count.
+//
+// A supernode's column k of L has its rows among the ancestors of k in the elimination
+// tree, so the unknowns of two disjoint subtrees never meet until their common
+// ancestors.  The tree is cut into subtrees T_1 … T_m, each whole, and the rest R (the
+// ancestors where they meet, the separators near the root in a nested-dissection-like
+// order).  Forward: every T_i is swept by one thread, its updates to its own rows made
+// at once and those to rows of R left; then one thread sweeps all supernodes in order,
+// solving R's and making the T_i's updates to R.  A row of R thus receives its updates
+// in the order of the supernodes, as in one sweep; a row of T_i receives T_i's only.
+// Back: R first, in reverse order by one thread, then each T_i by its thread (it reads
+// only its ancestors, all final).  Each entry's operations are those of one sweep in
+// the same order, so the result does not depend on the cut or on the thread count, bit
+// for bit (the rule of linalg/parallel.hpp).  CHOLMOD's own solve is one sweep on one
+// thread (only the BLAS under it threads the large dense blocks); this is what lets a
+// second core take half the tree.  A supernode of at least 32 columns (a 3D separator)
+// is solved and multiplied by the BLAS (dtrsv, dgemv), a narrower one by plain loops
+// (faster than a BLAS call there): a choice by the supernode, the same on any number of
+// threads, so the BLAS's own thread count alone changes round-off (linalg/threads.hpp).
+#pragma once
+
+#include <vector>
+
+namespace cdyn {
+
+// A view of a supernodal factor L (CHOLMOD: super, pi, px, s, x; int indices).
+// Supernode j holds columns super[j] … super[j+1] − 1; its rows are s[pi[j]] … s[pi[j+1] − 1]
+// (the first ones its own columns), its values the column-major block at x + px[j] with
+// pi[j+1] − pi[j] rows.
+struct SupernodalFactor {
+  int n = 0;
+  int nsuper = 0;
+  const int* super = nullptr;
+  const int* pi = nullptr;
+  const int* px = nullptr;
+  const int* s = nullptr;
+  const double* x = nullptr;
+};
+
+class SupernodalSolve {
+ public:
+  // The cut of L's tree for `threads` threads (1: one sweep), from L's pattern alone.
+  SupernodalSolve(const SupernodalFactor& L, int threads);
+  // x ← L⁻ᵀ L⁻¹ x, x in L's (permuted) order.  L must have the pattern it was cut from.
+  void solve(const SupernodalFactor& L, double* x) const;
+  int threads() const { return threads_; }  // as cut for (the groups may be fewer)
+  // The fraction of L's entries swept by one thread (R's): what bounds the speed-up.
+  double serial_fraction() const { return serial_fraction_; }
+
+ private:
+  struct Range {
+    int first, last;  // the supernodes of one subtree T_i (contiguous in postorder)
+  };
+  std::vector<std::vector<Range>> groups_;  // the subtrees of each thread
+  std::vector<int> tail_;       // tail_[j]: the first row position of supernode j in R
+  std::vector<long> tail_start_;  // where supernode j's products for R's rows are kept
+  long tail_entries_ = 0;
+  mutable std::vector<double> tails_;  // those products, made by the subtrees' threads
+  std::vector<char> in_tree_;   // supernode in some T_i
+  int threads_ = 1;
+  int max_rows_ = 0;            // the tallest supernode (workspace)
+  double serial_fraction_ = 1.0;
+};
+
+}  // namespace cdyn
