@@ -4,7 +4,8 @@
 //
 // The matrices: a 2D 9-point and a 3D 27-point stencil, diagonally dominant (SPD), of
 // the step matrices' shapes (M + θ²dt²A on a grid): the 2D factor has many narrow
-// supernodes (the plain loops), the 3D one wide separators (the BLAS).
+// supernodes, the sweeps' case; the 3D one its entries mostly in wide separators, which
+// SparseCholesky leaves to CHOLMOD's solve (suits()) but the sweeps must get right too.
 #include <gtest/gtest.h>
 
 #include <cholmod.h>
@@ -142,10 +143,13 @@ TEST(SupernodalSolve, EveryCutOfA2DFactorGivesTheBitsOfOneSweep) {
 }
 
 TEST(SupernodalSolve, EveryCutOfA3DFactorGivesTheBitsOfOneSweep) {
-  // (wide separators: their blocks go to the BLAS, kept on one thread here)
-  cdyn::set_blas_thread_count(1);
   expect_one_answer_for_every_cut(grid_matrix(18, 3), 0.5);
-  cdyn::set_blas_thread_count(0);
+}
+
+TEST(SupernodalSolve, SuitsA2DFactorAndNotA3DOne) {
+  const Factor two_d(grid_matrix(150, 2)), three_d(grid_matrix(18, 3));
+  EXPECT_TRUE(cdyn::SupernodalSolve::suits(two_d.view()));
+  EXPECT_FALSE(cdyn::SupernodalSolve::suits(three_d.view()));
 }
 
 TEST(SupernodalSolve, SparseCholeskySolvesTheSameOnOneAndTwoThreads) {

@@ -29,6 +29,7 @@ struct SparseCholesky::Impl {
   // A supernodal factor's sweeps by subtrees (linalg/supernodal_solve.hpp), cut for the
   // thread count of the last solve; reset by each analysis.
   mutable std::unique_ptr<SupernodalSolve> sweeps;
+  int sweeps_suit = -1;  // SupernodalSolve::suits the analysed pattern (−1: not asked yet)
   mutable Eigen::VectorXd y;  // the permuted right-hand side
 
   Impl() {
@@ -105,6 +106,7 @@ void SparseCholesky::analyze_with(const SparseMatrix& S, const std::vector<int>*
   m.free_factor(m.L);
   m.free_factor(m.symbolic);
   m.sweeps.reset();
+  m.sweeps_suit = -1;
   cholmod_sparse A = Impl::view(S);
   if (ordering) {
     const int saved_nmethods = m.common.nmethods, saved_ordering = m.common.method[0].ordering;
@@ -165,7 +167,9 @@ bool SparseCholesky::factorized() const { return impl_->L != nullptr; }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   Impl& m = *impl_;
-  if (m.L->is_super && m.L->is_ll) {
+  if (m.L->is_super && m.L->is_ll && m.sweeps_suit < 0)
+    m.sweeps_suit = SupernodalSolve::suits(Impl::supernodal(*m.L)) ? 1 : 0;
+  if (m.L->is_super && m.L->is_ll && m.sweeps_suit == 1) {
     // Our sweeps by subtrees, on the kernel's threads (CHOLMOD's are one sweep).
     const SupernodalFactor L = Impl::supernodal(*m.L);
     const int threads = thread_count();

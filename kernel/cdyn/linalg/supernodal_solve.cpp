@@ -6,8 +6,6 @@
 #include <queue>
 #include <utility>
 
-#include <dlfcn.h>
-
 namespace cdyn {
 
 namespace {
@@ -40,45 +38,13 @@ struct Block {
       : v(L.x + L.px[j]), rows(L.s + L.pi[j]), nc(L.super[j + 1] - L.super[j]), ld(L.pi[j + 1] - L.pi[j]) {}
 };
 
-// The BLAS under CHOLMOD (found in the process, as linalg/threads.cpp finds OpenBLAS's
-// thread count): its tuned kernels for the dense blocks of the large supernodes, where
-// plain loops were measured 1.4–1.9 times slower (the separators of a 3D mesh).
-using Dgemv = void (*)(const char*, const int*, const int*, const double*, const double*, const int*,
-                       const double*, const int*, const double*, double*, const int*);
-using Dtrsv = void (*)(const char*, const char*, const char*, const int*, const double*, const int*, double*,
-                       const int*);
-struct Blas {
-  Dgemv gemv = reinterpret_cast<Dgemv>(dlsym(RTLD_DEFAULT, "dgemv_"));
-  Dtrsv trsv = reinterpret_cast<Dtrsv>(dlsym(RTLD_DEFAULT, "dtrsv_"));
-  bool found() const { return gemv && trsv; }
-};
-const Blas& blas() {
-  static const Blas b;
-  return b;
-}
-
-// A supernode of at least this many columns goes to the BLAS.  Measured (one thread,
-// solves interleaved with CHOLMOD's): 2D 9-point grids of 10⁵ and 4·10⁵ unknowns 1.47
-// and 1.43 times faster than CHOLMOD's solve, 3D 27-point grids of 1.6·10⁴ and 6.9·10⁴
-// 0.91 and 0.97 times its speed; all supernodes to the BLAS (width 4): 1.03, 1.06, 1.00,
-// 0.65; none: 1.28, 1.21, 0.56, 0.53 (a 2D factor's many narrow supernodes pay a BLAS
-// call more than plain loops, a 3D separator's wide ones the reverse).  A property of
-// the supernode, not of the thread count: it is computed the same way on any number.
-constexpr int kBlasWidth = 32;
-
-bool by_blas(const Block& b) { return b.nc >= kBlasWidth && blas().found(); }
+// A supernode at least this wide is a separator of a 3D mesh's kind (see suits()).
+constexpr int kWide = 32;
 
 // Forward, one supernode: its diagonal block solved for its unknowns, then E_r = Σ_c L(row, c) x_c
 // for the rows below (E: ld − nc entries), to be subtracted from x_row.
 void forward_supernode(const Block& b, double* xs, double* E) {
   const int m = b.ld - b.nc;
-  if (by_blas(b)) {
-    const int one = 1;
-    const double alpha = 1.0, beta = 0.0;
-    blas().trsv("L", "N", "N", &b.nc, b.v, &b.ld, xs, &one);
-    if (m > 0) blas().gemv("N", &m, &b.nc, &alpha, b.v + b.nc, &b.ld, xs, &one, &beta, E, &one);
-    return;
-  }
   for (int c = 0; c < b.nc; ++c) {
     const double* col = b.v + static_cast<long>(c) * b.ld;
     const double xc = xs[c] / col[c];
@@ -99,22 +65,11 @@ void subtract(const Block& b, const double* E, int lo, int hi, double* x) {
 }
 
 // Back: the supernode's unknowns from its ancestors' (all final), Lᵀ's rows being L's
-// columns (G: a workspace of 2 ld entries).
+// columns (G: a workspace of ld − nc entries).
 void back_supernode(const Block& b, double* x, double* G) {
   double* xs = x + b.rows[0];
   const int m = b.ld - b.nc;
   for (int r = 0; r < m; ++r) G[r] = x[b.rows[b.nc + r]];
-  if (by_blas(b)) {
-    const int one = 1;
-    const double alpha = 1.0, beta = 0.0;
-    double* D = G + m;
-    if (m > 0) {
-      blas().gemv("T", &m, &b.nc, &alpha, b.v + b.nc, &b.ld, G, &one, &beta, D, &one);
-      for (int c = 0; c < b.nc; ++c) xs[c] -= D[c];
-    }
-    blas().trsv("L", "T", "N", &b.nc, b.v, &b.ld, xs, &one);
-    return;
-  }
   for (int c = b.nc - 1; c >= 0; --c) {
     const double* col = b.v + static_cast<long>(c) * b.ld;
     double t = xs[c] - dot(col + b.nc, G, m);
@@ -124,6 +79,17 @@ void back_supernode(const Block& b, double* x, double* G) {
 }
 
 }  // namespace
+
+bool SupernodalSolve::suits(const SupernodalFactor& L) {
+  double wide = 0.0, total = 0.0;
+  for (int j = 0; j < L.nsuper; ++j) {
+    const Block b(L, j);
+    const double entries = static_cast<double>(b.ld) * b.nc;
+    total += entries;
+    if (b.nc >= kWide) wide += entries;
+  }
+  return wide <= 0.5 * total;
+}
 
 SupernodalSolve::SupernodalSolve(const SupernodalFactor& L, int threads) : threads_(threads) {
   const int ns = L.nsuper;
@@ -203,14 +169,14 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactor& L, int threads) : threa
 void SupernodalSolve::solve(const SupernodalFactor& L, double* x) const {
   const int ns = L.nsuper;
   const int groups = static_cast<int>(groups_.size());
-  std::vector<double> E(max_rows_), G(2 * static_cast<std::size_t>(max_rows_));
+  std::vector<double> E(max_rows_), G(max_rows_);
   tails_.resize(tail_entries_);
   double* tails = tails_.data();
   // Forward: the subtrees, each by one thread, their updates to their own rows made and
   // those to R's rows computed (subtracted in order below).
 #pragma omp parallel for schedule(static, 1) num_threads(std::max(groups, 1)) if (groups > 1)
   for (int g = 0; g < groups; ++g) {
-    std::vector<double> work(2 * static_cast<std::size_t>(max_rows_));
+    std::vector<double> work(max_rows_);
     for (const Range& range : groups_[g])
       for (int j = range.first; j <= range.last; ++j) {
         const Block b(L, j);
@@ -234,7 +200,7 @@ void SupernodalSolve::solve(const SupernodalFactor& L, double* x) const {
     if (!in_tree_[j]) back_supernode(Block(L, j), x, G.data());
 #pragma omp parallel for schedule(static, 1) num_threads(std::max(groups, 1)) if (groups > 1)
   for (int g = 0; g < groups; ++g) {
-    std::vector<double> work(2 * static_cast<std::size_t>(max_rows_));
+    std::vector<double> work(max_rows_);
     for (const Range& range : groups_[g])
       for (int j = range.last; j >= range.first; --j) back_supernode(Block(L, j), x, work.data());
   }

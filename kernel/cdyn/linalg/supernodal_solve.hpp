@@ -15,10 +15,18 @@
 // the same order, so the result does not depend on the cut or on the thread count, bit
 // for bit (the rule of linalg/parallel.hpp).  CHOLMOD's own solve is one sweep on one
 // thread (only the BLAS under it threads the large dense blocks); this is what lets a
-// second core take half the tree.  A supernode of at least 32 columns (a 3D separator)
-// is solved and multiplied by the BLAS (dtrsv, dgemv), a narrower one by plain loops
-// (faster than a BLAS call there): a choice by the supernode, the same on any number of
-// threads, so the BLAS's own thread count alone changes round-off (linalg/threads.hpp).
+// second core take half the tree.
+//
+// The dense blocks are plain loops: on a factor whose supernodes are narrow (a 2D mesh's)
+// they beat CHOLMOD's BLAS calls (one thread, solves interleaved with CHOLMOD's: 9-point
+// grids of 10⁵ and 4·10⁵ unknowns 1.28 and 1.21 times faster), on one whose entries sit
+// mostly in wide supernodes (a 3D mesh's separators) the tuned BLAS is nearly twice as
+// fast (27-point grids of 1.6·10⁴ and 6.9·10⁴: 0.56 and 0.53 times its speed).  Calling
+// the BLAS from the sweeps for the wide ones was tried: it matched CHOLMOD in 3D, but a
+// BLAS on more threads than one (OpenBLAS's default, a thread per core) threads each
+// mid-sized dgemv from inside the sweeps' own threads: 3 times slower on two cores.  So
+// suits() sends a factor with most entries in wide supernodes to CHOLMOD's solve, a
+// property of the factor and not of the thread count.
 #pragma once
 
 #include <vector>
@@ -41,6 +49,9 @@ struct SupernodalFactor {
 
 class SupernodalSolve {
  public:
+  // Whether these sweeps suit L: at most half its entries in supernodes of 32 columns or
+  // more (else CHOLMOD's solve, whose BLAS is faster on wide blocks).
+  static bool suits(const SupernodalFactor& L);
   // The cut of L's tree for `threads` threads (1: one sweep), from L's pattern alone.
   SupernodalSolve(const SupernodalFactor& L, int threads);
   // x ← L⁻ᵀ L⁻¹ x, x in L's (permuted) order.  L must have the pattern it was cut from.
