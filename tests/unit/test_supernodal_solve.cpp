@@ -10,6 +10,7 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -57,20 +58,14 @@ class Factor {
     cholmod_start(&c_);
     c_.supernodal = CHOLMOD_SUPERNODAL;
     c_.final_ll = 1;
-    cholmod_sparse A;
-    std::memset(&A, 0, sizeof A);
-    A.nrow = A.ncol = S.rows();
-    A.nzmax = S.nonZeros();
-    A.p = const_cast<int*>(S.outerIndexPtr());
-    A.i = const_cast<int*>(S.innerIndexPtr());
-    A.x = const_cast<double*>(S.valuePtr());
-    A.stype = -1;
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = A.packed = 1;
-    L_ = cholmod_analyze(&A, &c_);
-    cholmod_factorize(&A, L_, &c_);
+    // (a copy of S's lower triangle in CHOLMOD's own arrays)
+    cholmod_sparse* A = cholmod_allocate_sparse(S.rows(), S.cols(), S.nonZeros(), 1, 1, -1, CHOLMOD_REAL, &c_);
+    std::copy(S.outerIndexPtr(), S.outerIndexPtr() + S.cols() + 1, static_cast<int*>(A->p));
+    std::copy(S.innerIndexPtr(), S.innerIndexPtr() + S.nonZeros(), static_cast<int*>(A->i));
+    std::copy(S.valuePtr(), S.valuePtr() + S.nonZeros(), static_cast<double*>(A->x));
+    L_ = cholmod_analyze(A, &c_);
+    cholmod_factorize(A, L_, &c_);
+    cholmod_free_sparse(&A, &c_);
   }
   ~Factor() {
     cholmod_free_factor(&L_, &c_);
