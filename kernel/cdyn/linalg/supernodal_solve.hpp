@@ -24,9 +24,9 @@
 // fast (27-point grids of 1.6·10⁴ and 6.9·10⁴: 0.56 and 0.53 times its speed).  Calling
 // the BLAS from the sweeps for the wide ones was tried: it matched CHOLMOD in 3D, but a
 // BLAS on more threads than one (OpenBLAS's default, a thread per core) threads each
-// mid-sized dgemv from inside the sweeps' own threads: 3 times slower on two cores.  So
-// suits() sends a factor with most entries in wide supernodes to CHOLMOD's solve, a
-// property of the factor and not of the thread count.
+// mid-sized dgemv from inside the sweeps' own threads: the solves 10 times slower, a
+// step 3 times, on two cores.  So suits() sends a factor with most entries in wide
+// supernodes to CHOLMOD's solve, a property of the factor and not of the thread count.
 #pragma once
 
 #include <vector>
