@@ -66,4 +66,16 @@ TEST(SparseCholesky, AnOrderingOfTheWrongLengthIsRefused) {
   EXPECT_THROW(chol.analyze(S, std::vector<int>(15, 0)), cdyn::InputError);
 }
 
+// A factorization that breaks down drops the factor: a solve after it is refused, not a
+// null dereference.
+TEST(SparseCholesky, ASolveWithoutAFactorIsRefused) {
+  const SparseMatrix S = shifted_laplacian(4);
+  SparseMatrix indefinite = -S;
+  cdyn::SparseCholesky chol;
+  chol.analyze(indefinite);
+  EXPECT_GE(chol.factorize(indefinite), 0);
+  EXPECT_FALSE(chol.factorized());
+  EXPECT_THROW(chol.solve(VectorXd::Ones(16)), cdyn::InputError);
+}
+
 }  // namespace

@@ -167,6 +167,7 @@ bool SparseCholesky::factorized() const { return impl_->L != nullptr; }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   Impl& m = *impl_;
+  if (!m.L) throw InputError("SparseCholesky: solve() without a factor (factorize() first, or it failed)");
   if (m.L->is_super && m.L->is_ll && m.sweeps_suit < 0)
     m.sweeps_suit = SupernodalSolve::suits(Impl::supernodal(*m.L)) ? 1 : 0;
   if (m.L->is_super && m.L->is_ll && m.sweeps_suit == 1) {
