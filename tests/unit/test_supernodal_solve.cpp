@@ -141,6 +141,39 @@ TEST(SupernodalSolve, EveryCutOfA3DFactorGivesTheBitsOfOneSweep) {
   expect_one_answer_for_every_cut(grid_matrix(18, 3), 0.5);
 }
 
+// The same L with each supernode's rows below its diagonal block, but the first (its
+// parent's), listed in reverse (the values' rows with them): a layout CHOLMOD does not
+// make, but a valid one.  The cut
+// splits a supernode's rows into its subtree's and R's by their order; unsorted, it
+// must fall back to one sweep rather than update a row after its own solve.
+TEST(SupernodalSolve, RowsOutOfOrderFallBackToOneSweep) {
+  Factor F(grid_matrix(150, 2));
+  ASSERT_TRUE(F.supernodal());
+  cdyn::SupernodalFactor L = F.view();
+  std::vector<int> rows(L.s, L.s + L.pi[L.nsuper]);
+  std::vector<double> values(L.x, L.x + L.px[L.nsuper]);
+  for (int j = 0; j < L.nsuper; ++j) {
+    const int nc = L.super[j + 1] - L.super[j], ld = L.pi[j + 1] - L.pi[j];
+    if (ld - nc < 3) continue;
+    std::reverse(rows.begin() + L.pi[j] + nc + 1, rows.begin() + L.pi[j + 1]);
+    for (int c = 0; c < nc; ++c) {
+      auto column = values.begin() + L.px[j] + static_cast<long>(c) * ld;
+      std::reverse(column + nc + 1, column + ld);
+    }
+  }
+  const VectorXd y = VectorXd::LinSpaced(L.n, -1.0, 2.0).array().sin();
+  const VectorXd reference = F.cholmod_sweeps(y);
+  L.s = rows.data();
+  L.x = values.data();
+  cdyn::set_thread_count(2);
+  const cdyn::SupernodalSolve sweeps(L, 2);
+  VectorXd x = y;
+  sweeps.solve(L, x.data());
+  cdyn::set_thread_count(0);
+  EXPECT_EQ(sweeps.serial_fraction(), 1.0);
+  EXPECT_LT((x - reference).norm(), 1e-13 * reference.norm());
+}
+
 TEST(SupernodalSolve, SuitsA2DFactorAndNotA3DOne) {
   const Factor two_d(grid_matrix(150, 2)), three_d(grid_matrix(18, 3));
   EXPECT_TRUE(cdyn::SupernodalSolve::suits(two_d.view()));

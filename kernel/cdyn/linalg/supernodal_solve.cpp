@@ -157,6 +157,15 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactor& L, int threads) : threa
       const Block b(L, j);
       int p = b.nc;
       while (p < b.ld && b.rows[p] <= last_column) ++p;
+      // The split assumes the rows sorted (CHOLMOD sorts them): a row of the subtree
+      // after the split would be updated after its own solve.  Else one sweep.
+      for (int q = p; q < b.ld; ++q)
+        if (b.rows[q] <= last_column) {
+          groups_.clear();
+          in_tree_.assign(ns, 0);
+          tail_entries_ = 0;
+          return;
+        }
       tail_[j] = p;
       tail_start_[j] = tail_entries_;
       tail_entries_ += b.ld - p;
