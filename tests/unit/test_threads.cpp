@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "cdyn/mesh/mesh.hpp"
 
 #include "cdyn/linalg/masked_cg.hpp"
+#include "cdyn/linalg/sparse_cholesky.hpp"
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/linalg/threads.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
@@ -111,6 +113,42 @@ TEST(Threads, TheCountIsSetAndGivenBack) {
     cdyn::set_blas_thread_count(0);
     EXPECT_EQ(cdyn::blas_thread_count(), blas);
   }
+}
+
+// The threads of this process (Linux: /proc/self/task).
+int process_threads() {
+  int n = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) ++n;
+  return n;
+}
+
+// CHOLMOD 3 asks for a team of 4 OpenMP threads in its supernodal factorization's loops
+// over large supernodes, whatever OMP_NUM_THREADS says; SparseCholesky bounds them by the
+// kernel's count (linalg/threads.hpp, within_thread_count).  The process's threads are
+// counted around a factorization of a grid matrix with supernodes of more than 10⁴
+// entries, the BLAS on one thread (OpenBLAS starts its own threads for its own count):
+// on one thread no thread may be started (without the bound: 3, measured), on two one
+// worker at most.
+TEST(Threads, ALibrarysParallelRegionsTakeTheKernelsCount) {
+#ifndef CDYN_WITH_OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#endif
+  std::mt19937 gen(7);
+  const SparseMatrix S = grid_matrix(200, gen);
+  cdyn::SparseCholesky chol;
+  chol.analyze(S);
+  cdyn::set_blas_thread_count(1);
+  cdyn::set_thread_count(1);
+  const int before = process_threads();
+  ASSERT_EQ(chol.factorize(S), -1);
+  EXPECT_EQ(process_threads(), before);
+  cdyn::set_thread_count(2);
+  ASSERT_EQ(chol.factorize(S), -1);
+  EXPECT_LE(process_threads(), before + 1);
+  cdyn::set_thread_count(0);
+  cdyn::set_blas_thread_count(0);
+  // an exception thrown inside the bounded call reaches the caller
+  EXPECT_THROW(cdyn::within_thread_count([] { throw cdyn::InputError("thrown inside"); }), cdyn::InputError);
 }
 
 // The products are gathers whose terms are added in Eigen's order (j increasing), so they

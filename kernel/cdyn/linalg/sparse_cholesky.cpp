@@ -151,7 +151,7 @@ int SparseCholesky::factorize(const SparseMatrix& S) {
   m.L = cholmod_copy_factor(m.symbolic, &m.common);
   m.check("copy_factor");
   cholmod_sparse A = Impl::view(S);
-  cholmod_factorize(&A, m.L, &m.common);
+  within_thread_count([&] { cholmod_factorize(&A, m.L, &m.common); });
   if (m.common.status == CHOLMOD_NOT_POSDEF) {
     // L->minor is the column (in the permuted order) where the factorization stopped
     const int k = static_cast<int>(m.L->minor);

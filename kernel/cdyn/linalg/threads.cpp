@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <exception>
 #include <string>
 
 #include "cdyn/base/error.hpp"
@@ -43,6 +44,26 @@ void set_thread_count(int n) {
   static const int environment = omp_get_max_threads();  // read before the first change
   omp_set_num_threads(n > 0 ? n : environment);
 #endif
+}
+
+void within_thread_count(const std::function<void()>& f) {
+#ifdef _OPENMP
+  if (!omp_in_parallel()) {
+    const int limit = thread_count();
+    std::exception_ptr thrown;  // an exception may not leave the teams region
+#pragma omp teams num_teams(1) thread_limit(limit)
+    {
+      try {
+        f();
+      } catch (...) {
+        thrown = std::current_exception();
+      }
+    }
+    if (thrown) std::rethrow_exception(thrown);
+    return;
+  }
+#endif
+  f();
 }
 
 int blas_thread_count() {

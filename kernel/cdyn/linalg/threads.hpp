@@ -18,6 +18,8 @@
 // object of the kernel owns; 0 gives a count back to what the environment set.
 #pragma once
 
+#include <functional>
+
 namespace cdyn {
 
 // The threads a parallel loop of the kernel runs on (1 without OpenMP).
@@ -26,6 +28,17 @@ int thread_count();
 // n ≥ 1: the kernel's loops on n threads; n = 0: the environment's count again (the one
 // before the first call).  InputError (parameter "threads") for n < 0.
 void set_thread_count(int n);
+
+// Runs f, a call into a library, with the OpenMP threads its parallel regions take bounded
+// by thread_count().  CHOLMOD 3's supernodal factorization asks for a fixed team of
+// CHOLMOD_OMP_NUM_THREADS = 4 (cholmod_core.h) in its loops that clear and assemble L,
+// whatever OMP_NUM_THREADS says: on this 2-core machine, with the kernel on one thread,
+// every large supernode woke three workers (8 % of a chattering contact run's time, most
+// of it in futex calls, docs/performance.md).  Done by a host teams region of one team
+// with thread_limit = thread_count() (OpenMP 5.0); called inside a parallel region, f
+// runs as it is (a nested region is then the runtime's to limit).  An exception f throws
+// is passed on after the region.
+void within_thread_count(const std::function<void()>& f);
 
 // The threads of the BLAS if it is OpenBLAS; 0 when the BLAS cannot tell (another BLAS).
 int blas_thread_count();

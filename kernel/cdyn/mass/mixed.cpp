@@ -9,6 +9,7 @@
 #include "cdyn/linalg/least_squares.hpp"
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
+#include "cdyn/linalg/threads.hpp"
 
 namespace cdyn {
 
@@ -93,7 +94,7 @@ class MixedMassModel final : public MassModel {
     if (diagonal_) return rhs.cwiseQuotient(Cdiag_);
     if (!cholC_) {
       cholC_ = std::make_unique<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>>();
-      cholC_->compute(C_);
+      within_thread_count([&] { cholC_->compute(C_); });
       if (cholC_->info() != Eigen::Success)
         throw NumericalError("mass model " + name_ + ": the Cholesky factorization of C failed");
     }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/threads.hpp"
 
 namespace cdyn {
 
@@ -81,7 +82,7 @@ bool ShiftedGram::factorize(double sigma) {
   Impl& m = *impl_;
   for (int i = 0; i < m.n_g; ++i) m.M.valuePtr()[m.shifted[i]] = m.gram_diagonal[i] - sigma;
   ++m.factorizations;
-  m.chol.factorize(m.M);
+  within_thread_count([&] { m.chol.factorize(m.M); });
   if (m.chol.info() == Eigen::Success) return true;
   if (m.chol.status() == CHOLMOD_NOT_POSDEF) return false;
   throw NumericalError("condition (12): CHOLMOD could not factorize the Gram matrix of [B; G] (status " +
