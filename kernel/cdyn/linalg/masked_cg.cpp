@@ -28,7 +28,7 @@ void product(const SparseMatrix& S, const std::vector<char>& held, const double*
 }
 
 // max_i |x_i| / s_i: a residual in the units of the stopping test.
-double scaled_max(const Eigen::VectorXd& x, const Eigen::VectorXd& s) { return x.cwiseQuotient(s).lpNorm<Eigen::Infinity>(); }
+double scaled_max(const Eigen::VectorXd& x, const Eigen::VectorXd& s) { return max_abs(x, &s); }
 
 // The rows an iteration visits: all of them (the identity), or the free ones alone
 // (listed in increasing order) when most are held — the vectors vanish on the held rows,
@@ -115,7 +115,8 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
   // r = D^{1/2} L̂ r̂, from CG's r̂ (into r_; t_ is scratch)
   auto unprecondition = [&]() {
     sgs_.multiply_lower(held, r_hat_.data(), t_.data());
-    r_ = t_.cwiseProduct(sqrt_d);
+#pragma omp parallel for schedule(static) if (2 * n >= kParallelWork)
+    for (int i = 0; i < n; ++i) r_[i] = t_[i] * sqrt_d[i];
     return scaled_max(r_, D_);
   };
 
@@ -137,29 +138,37 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     if (y.size() != n) y = Eigen::VectorXd::Zero(n);
     for (Eigen::VectorXd* v : {&r_, &r_hat_, &p_, &t_, &w_, &q_}) v->resize(n);
     // y = b on A; r = b − S̃y on I, 0 on A (S̃'s rows on I do not see the columns of A).
+    // (Every loop over the vectors is shared among the threads, an entry to a thread:
+    // the set-up's passes, on one thread, kept the second one waiting for a tenth of
+    // the impact window's time at n = 320.)
+    const bool threaded = 2L * n >= kParallelWork;
+    long n_free = 0;
+#pragma omp parallel for schedule(static) reduction(+ : n_free) if (threaded)
     for (int i = 0; i < n; ++i) {
       if (held[i]) y[i] = b[i];
       p_[i] = held[i] ? 0.0 : y[i];
+      n_free += !held[i];
     }
     product(S_, held, p_.data(), q_.data());
-    r_ = b - q_;
-    for (int i = 0; i < n; ++i)
-      if (held[i]) r_[i] = 0.0;
+#pragma omp parallel for schedule(static) if (threaded)
+    for (int i = 0; i < n; ++i) {
+      r_[i] = held[i] ? 0.0 : b[i] - q_[i];
+      q_[i] = r_[i] * inverse_sqrt_D_[i];  // D^{-1/2} r, for r̂ below
+    }
     result.scaled_residual = scaled_max(r_, D_);
     if (!(result.scaled_residual > tol)) {
       result.converged = std::isfinite(result.scaled_residual);
       return result;
     }
     // r̂ = L̂⁻¹ D^{-1/2} r
-    q_ = r_.cwiseProduct(inverse_sqrt_D_);
     sgs_.solve_lower(held, q_.data(), r_hat_.data());
     rr_ = dot(r_hat_, r_hat_);
-    p_ = r_hat_;
+#pragma omp parallel for schedule(static) if (threaded)
+    for (int i = 0; i < n; ++i) p_[i] = r_hat_[i];
     // Most rows held (resting contact, a chattering contact zone): the iterations visit
     // the free rows alone.  Every vector of the iteration is 0 on the held rows, and the
     // whole-vector sweeps spent most of their time writing those zeros (the resting
     // membrane at n = 160, 97 % of the unknowns held: 20.2 → 18.5 ms a step).
-    const long n_free = std::count(held.begin(), held.end(), 0);
     compact_ = 2 * n_free < n;
     if (compact_) {
       free_.clear();

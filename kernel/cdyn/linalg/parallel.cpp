@@ -3,6 +3,8 @@
 #include "cdyn/linalg/parallel.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -51,6 +53,21 @@ double dot(long n, const double* x, const double* y) {
   double sum = 0.0;
   for (double s : sums) sum += s;
   return sum;
+}
+
+double max_abs(const Eigen::VectorXd& x, const Eigen::VectorXd* scale) {
+  const long n = x.size();
+  if (scale && scale->size() != n)
+    throw InputError("max_abs: a scale of " + std::to_string(scale->size()) + " entries for " + std::to_string(n));
+  double m = 0.0;
+  bool no_nan = true;
+#pragma omp parallel for schedule(static) reduction(max : m) reduction(&& : no_nan) if (2 * n >= kParallelWork)
+  for (long i = 0; i < n; ++i) {
+    const double v = scale ? std::abs(x[i]) / (*scale)[i] : std::abs(x[i]);
+    no_nan = no_nan && !std::isnan(v);
+    m = std::max(m, v);
+  }
+  return no_nan ? m : std::numeric_limits<double>::quiet_NaN();  // (std::max drops a NaN)
 }
 
 double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {

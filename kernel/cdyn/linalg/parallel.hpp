@@ -50,6 +50,10 @@ Eigen::VectorXd symmetric_times(const SparseMatrix& S, const Eigen::VectorXd& x)
 double dot(long n, const double* x, const double* y);
 double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y);
 
+// max_i |x_i| / scale_i (|x_i| without a scale), NaN if an entry is NaN: a maximum is
+// the same in any order, so the entries are shared among the threads.
+double max_abs(const Eigen::VectorXd& x, const Eigen::VectorXd* scale = nullptr);
+
 // Mᵀ in compressed columns: what B x is computed from (rule 1).
 SparseMatrix transposed(const SparseMatrix& M);
 

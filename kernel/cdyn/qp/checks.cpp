@@ -7,6 +7,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
 
 namespace cdyn {
@@ -97,7 +98,18 @@ void check_problem(const BoundQP& qp, bool matrices) {
       check_symmetric(f.C, "C");
     }
   }
-  // (called every step: the index text is made only for a message, not per unknown)
+  // (called every step: the index text is made only for a message, not per unknown;
+  // the entries are first checked shared among the threads, and the first failing one
+  // looked for on one thread only if there is one)
+  auto fine = [&](int i) {
+    return std::isfinite(qp.r[i]) && !std::isnan(qp.lower[i]) && !std::isnan(qp.upper[i]) &&
+           qp.lower[i] != std::numeric_limits<double>::infinity() &&
+           qp.upper[i] != -std::numeric_limits<double>::infinity() && qp.lower[i] <= qp.upper[i];
+  };
+  bool all_fine = true;
+#pragma omp parallel for schedule(static) reduction(&& : all_fine) if (3L * n >= kParallelWork)
+  for (int i = 0; i < n; ++i) all_fine = all_fine && fine(i);
+  if (all_fine) return;
   auto at = [](int i) { return "[" + std::to_string(i) + "]"; };
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(qp.r[i])) throw InputError("BoundQP: r" + at(i) + " = " + to_text(qp.r[i]) + " is not finite");

@@ -71,7 +71,7 @@ double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::Ve
 double kkt_residual(const BoundQP& qp, const Eigen::VectorXd& X) {
   QuadraticForm form;
   form.set(qp);
-  return kkt_residual(qp, X, form.apply(X) - qp.r);
+  return kkt_residual(qp, X, form.gradient(X));
 }
 
 std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
@@ -92,7 +92,7 @@ void hold_at_bounds(const BoundQP& qp, const std::vector<int>& active, Eigen::Ve
 }
 
 void finish_result(const BoundQP& qp, const QuadraticForm& form, double tol, QPResult& result) {
-  result.reaction = form.apply(result.X) - qp.r;
+  result.reaction = form.gradient(result.X);
   const Eigen::VectorXd& D = form.diagonal();
   result.kkt_residual = kkt_residual(qp, result.X, result.reaction, &D);
   result.active = active_set(qp, result.X, result.reaction, D);

@@ -29,7 +29,7 @@ double objective(unsigned n, const double* x, double* grad, void* data) {
   auto& o = *static_cast<Objective*>(data);
   ++o.evaluations;
   const Eigen::Map<const Eigen::VectorXd> X(x, n);
-  const Eigen::VectorXd g = o.form->apply(X) - o.qp->r;
+  const Eigen::VectorXd g = o.form->gradient(X);
   if (grad) Eigen::Map<Eigen::VectorXd>(grad, n) = g;
   if (!o.found && kkt_residual(*o.qp, X, g, &o.form->diagonal()) <= o.tol) {
     o.found = true;

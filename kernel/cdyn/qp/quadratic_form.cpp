@@ -39,6 +39,16 @@ Eigen::VectorXd QuadraticForm::apply(const Eigen::VectorXd& X) const {
   return symmetric_times(f.A, X) + f.c * transpose_times(f.B, Z);
 }
 
+Eigen::VectorXd QuadraticForm::gradient(const Eigen::VectorXd& X) const {
+  Eigen::VectorXd g = apply(X);
+  const Eigen::VectorXd& r = qp_->r;
+  const long n = g.size();
+  // (entry by entry, so shared among the threads: the same bits as apply(X) − r)
+#pragma omp parallel for schedule(static) if (2 * n >= kParallelWork)
+  for (long i = 0; i < n; ++i) g[i] -= r[i];
+  return g;
+}
+
 double QuadraticForm::objective(const Eigen::VectorXd& X) const {
   return 0.5 * X.dot(apply(X)) - qp_->r.dot(X);
 }

@@ -23,6 +23,7 @@ class QuadraticForm {
   // returned false): D and C's factor are kept, only the problem is rebound.
   void set(const BoundQP& qp, bool same_matrices = false);
   Eigen::VectorXd apply(const Eigen::VectorXd& X) const;
+  Eigen::VectorXd gradient(const Eigen::VectorXd& X) const;  // S X − r (the reaction λ at X)
   double objective(const Eigen::VectorXd& X) const;  // ½ Xᵀ S X − rᵀ X
   const Eigen::VectorXd& diagonal() const { return D_; }  // scaling_diagonal(qp), computed by set()
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/linalg/parallel.hpp"
 #include "cdyn/qp/pdas/explicit_reduced_system.hpp"
 #include "cdyn/qp/pdas/projected_newton.hpp"
 #include "cdyn/qp/pdas/saddle_reduced_system.hpp"
@@ -50,8 +51,10 @@ ActiveSet pdas_rule(const BoundQP& qp, const Eigen::VectorXd& D, const Eigen::Ve
                     const Eigen::VectorXd& lam) {
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
-  ActiveSet st(qp.size(), kFree);
-  for (int i = 0; i < qp.size(); ++i) {
+  const int n = qp.size();
+  ActiveSet st(n, kFree);
+#pragma omp parallel for schedule(static) if (4L * n >= kParallelWork)
+  for (int i = 0; i < n; ++i) {
     if (l[i] == u[i])
       st[i] = kLower;
     else if (std::isfinite(l[i]) && lam[i] + D[i] * (l[i] - X[i]) > 0)
@@ -65,13 +68,13 @@ ActiveSet pdas_rule(const BoundQP& qp, const Eigen::VectorXd& D, const Eigen::Ve
 // The held unknowns of an active set and the bound values they are held at (0 elsewhere).
 void held_at_bounds(const BoundQP& qp, const ActiveSet& state, HeldSet& held, Eigen::VectorXd& value) {
   const int n = qp.size();
-  held.assign(n, 0);
-  value = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < n; ++i)
-    if (state[i] != kFree) {
-      held[i] = 1;
-      value[i] = state[i] == kLower ? qp.lower[i] : qp.upper[i];
-    }
+  held.resize(n);
+  value.resize(n);
+#pragma omp parallel for schedule(static) if (2L * n >= kParallelWork)
+  for (int i = 0; i < n; ++i) {
+    held[i] = state[i] != kFree;
+    value[i] = state[i] == kFree ? 0.0 : state[i] == kLower ? qp.lower[i] : qp.upper[i];
+  }
 }
 
 // At most two steps of iterative refinement of a result above tol, with the same
@@ -174,7 +177,7 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     if (next == state) {
       // X is exact up to the linear solve.  λ from a whole product (an inexact solve's
       // updated residual has drifted by round-off); refine if the residual says so.
-      if (system.last_inexact()) lam = s.form.apply(X) - qp.r;
+      if (system.last_inexact()) lam = s.form.gradient(X);
       result.X = X;
       result.reaction = lam;
       result.kkt_residual = kkt_residual(qp, X, lam, &D);

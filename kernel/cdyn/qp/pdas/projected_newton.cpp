@@ -24,7 +24,7 @@ ProjectedNewtonResult projected_newton(const BoundQP& qp, const QuadraticForm& f
   while (out.iterations < options.max_iterations) {
     ++out.iterations;
     ++counters.damped_iterations;
-    const Eigen::VectorXd lam = form.apply(X) - qp.r;
+    const Eigen::VectorXd lam = form.gradient(X);
     if (kkt_residual(qp, X, lam, &D) <= options.tol) {
       out.X = X;
       return out;

@@ -22,16 +22,16 @@ constexpr double kLooseSolve = 1e-4;
 }  // namespace
 
 SolveTolerance::SolveTolerance(const BoundQP& qp, const Eigen::VectorXd& D, double tol)
-    : tol_(tol), r_scale_(qp.r.cwiseQuotient(D).lpNorm<Eigen::Infinity>()) {}
+    : tol_(tol), r_scale_(max_abs(qp.r, &D)) {}
 
 double SolveTolerance::operator()(const Eigen::VectorXd& held_values, bool tight) const {
-  const double scale = std::max(r_scale_, held_values.lpNorm<Eigen::Infinity>());
+  const double scale = std::max(r_scale_, max_abs(held_values));
   return (tight ? 0.5 * tol_ : std::max(0.5 * tol_, kLooseSolve)) * scale;
 }
 
-Eigen::VectorXd ReducedSystem::reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X,
+Eigen::VectorXd ReducedSystem::reaction(const BoundQP&, const QuadraticForm& form, const Eigen::VectorXd& X,
                                         const HeldSet&) const {
-  return form.apply(X) - qp.r;
+  return form.gradient(X);
 }
 
 void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, SparseMatrix& out) {
@@ -52,7 +52,9 @@ void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, Sparse
 }
 
 void copy_held_values(const HeldSet& held, const Eigen::VectorXd& value, Eigen::VectorXd& v) {
-  for (std::size_t j = 0; j < held.size(); ++j)
+  const long n = static_cast<long>(held.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+  for (long j = 0; j < n; ++j)
     if (held[j]) v[j] = value[j];
 }
 

@@ -120,7 +120,7 @@ QPResult ReferencePDASSolver::solve(const BoundQP& qp, const QPResult* warm_star
       if (bound[i] > 0) held_values[i] = u[i];
     }
     result.X = solve_free_block(qp, at, n_free, held_values);
-    const Eigen::VectorXd lam = form.apply(result.X) - qp.r;
+    const Eigen::VectorXd lam = form.gradient(result.X);
     std::vector<int> next(n, 0);
     for (int i = 0; i < n; ++i) {
       const double x = result.X[i];
