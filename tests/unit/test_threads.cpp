@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -231,6 +232,41 @@ TEST(Threads, ConjugateGradientsAreTheSameOnOneAndTwoThreads) {
   EXPECT_TRUE(same_bits(one.result.scaled_residual, two.result.scaled_residual));
   EXPECT_TRUE(same_bits(one.y, two.y));
   EXPECT_TRUE(same_bits(one.residual, two.residual));
+}
+
+// A PDAS solve on a grid of 150 × 150 unknowns, a third of them fixed (lower = upper:
+// held from the first iteration; every unknown i ≡ 1 mod 3, so that the rows where the
+// threads' ranges meet, n/2 and n/3, 2n/3, are free rows next to held ones), the others
+// free: the right-hand side of its reduced system is made by the scatter over the held
+// columns cut into row ranges (qp/pdas/explicit_reduced_system.cpp; the steps below hold
+// too few unknowns for the cut).  The same solution on one, two and three threads, to
+// the tolerance: a row updated by two ranges or by none would change X there.
+TEST(Threads, PdasWithAThirdOfTheUnknownsHeldIsTheSameOnOneTwoAndThreeThreads) {
+  std::mt19937 gen(5);
+  cdyn::BoundQP qp;
+  qp.S = grid_matrix(150, gen);
+  const int n = static_cast<int>(qp.S.rows());
+  qp.r = random_vector(n, gen);
+  const VectorXd fixed = random_vector(n, gen);
+  qp.lower = VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
+  qp.upper = VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  for (int i = 1; i < n; i += 3) qp.lower[i] = qp.upper[i] = fixed[i];
+  auto solve = [&] {
+    cdyn::QPOptions options;
+    options.tol = 1e-12;
+    cdyn::PDASSolver pdas(options);
+    return pdas.solve(qp);
+  };
+  const cdyn::QPResult one = on_threads(1, solve), two = on_threads(2, solve), three = on_threads(3, solve);
+  for (const cdyn::QPResult* result : {&one, &two, &three}) {
+    ASSERT_TRUE(result->converged);
+    EXPECT_LE(result->kkt_residual, 1e-12);
+  }
+  EXPECT_EQ(static_cast<int>(one.active.size()), n / 3);  // 7 500 held: the cut needs 4 000
+  for (const cdyn::QPResult* result : {&two, &three}) {
+    EXPECT_TRUE(same_bits(one.X, result->X));
+    EXPECT_TRUE(same_bits(one.reaction, result->reaction));
+  }
 }
 
 // The seed's membrane at n = 80 (6 241 unknowns after condensation), 300 steps of
