@@ -234,17 +234,18 @@ TEST(Threads, ConjugateGradientsAreTheSameOnOneAndTwoThreads) {
   EXPECT_TRUE(same_bits(one.residual, two.residual));
 }
 
-// A PDAS solve on a grid of 150 × 150 unknowns, a third of them fixed (lower = upper:
-// held from the first iteration; every unknown i ≡ 1 mod 3, so that the rows where the
-// threads' ranges meet, n/2 and n/3, 2n/3, are free rows next to held ones), the others
-// free: the right-hand side of its reduced system is made by the scatter over the held
-// columns cut into row ranges (qp/pdas/explicit_reduced_system.cpp; the steps below hold
-// too few unknowns for the cut).  The same solution on one, two and three threads, to
-// the tolerance: a row updated by two ranges or by none would change X there.
+// A PDAS solve on a grid of 151 × 151 unknowns, a third of them fixed (lower = upper:
+// held from the first iteration), the others free: the right-hand side of its reduced
+// system is made by the scatter over the held columns cut into row ranges
+// (qp/pdas/explicit_reduced_system.cpp; the steps below hold too few unknowns for the
+// cut).  The fixed unknowns are every i ≡ 1 mod 3: a grid line of 151 ≢ 0 mod 3 puts
+// free rows next to held columns of the neighbouring range, across and down the grid.
+// The same solution on one, two and three threads, to the tolerance: a row updated by
+// two ranges, or a held column a range does not walk, changes X's bits.
 TEST(Threads, PdasWithAThirdOfTheUnknownsHeldIsTheSameOnOneTwoAndThreeThreads) {
   std::mt19937 gen(5);
   cdyn::BoundQP qp;
-  qp.S = grid_matrix(150, gen);
+  qp.S = grid_matrix(151, gen);
   const int n = static_cast<int>(qp.S.rows());
   qp.r = random_vector(n, gen);
   const VectorXd fixed = random_vector(n, gen);
@@ -262,7 +263,7 @@ TEST(Threads, PdasWithAThirdOfTheUnknownsHeldIsTheSameOnOneTwoAndThreeThreads) {
     ASSERT_TRUE(result->converged);
     EXPECT_LE(result->kkt_residual, 1e-12);
   }
-  EXPECT_EQ(static_cast<int>(one.active.size()), n / 3);  // 7 500 held: the cut needs 4 000
+  EXPECT_EQ(static_cast<int>(one.active.size()), n / 3);  // 7 600 held: the cut needs 4 000
   for (const cdyn::QPResult* result : {&two, &three}) {
     EXPECT_TRUE(same_bits(one.X, result->X));
     EXPECT_TRUE(same_bits(one.reaction, result->reaction));

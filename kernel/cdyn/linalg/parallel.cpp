@@ -59,15 +59,27 @@ double max_abs(const Eigen::VectorXd& x, const Eigen::VectorXd* scale) {
   const long n = x.size();
   if (scale && scale->size() != n)
     throw InputError("max_abs: a scale of " + std::to_string(scale->size()) + " entries for " + std::to_string(n));
+  // (a NaN is flagged apart, so that the maximum is a plain one, which vectorizes)
+  const double* v = x.data();
+  const double* s = scale ? scale->data() : nullptr;
   double m = 0.0;
-  bool no_nan = true;
-#pragma omp parallel for schedule(static) reduction(max : m) reduction(&& : no_nan) if (2 * n >= kParallelWork)
-  for (long i = 0; i < n; ++i) {
-    const double v = scale ? std::abs(x[i]) / (*scale)[i] : std::abs(x[i]);
-    no_nan = no_nan && !std::isnan(v);
-    m = std::max(m, v);
+  int nan = 0;
+  if (s) {
+#pragma omp parallel for simd schedule(static) reduction(max : m) reduction(| : nan) if (2 * n >= kParallelWork)
+    for (long i = 0; i < n; ++i) {
+      const double a = std::abs(v[i]) / s[i];
+      nan |= a != a;
+      m = a > m ? a : m;
+    }
+  } else {
+#pragma omp parallel for simd schedule(static) reduction(max : m) reduction(| : nan) if (2 * n >= kParallelWork)
+    for (long i = 0; i < n; ++i) {
+      const double a = std::abs(v[i]);
+      nan |= a != a;
+      m = a > m ? a : m;
+    }
   }
-  return no_nan ? m : std::numeric_limits<double>::quiet_NaN();  // (std::max drops a NaN)
+  return nan ? std::numeric_limits<double>::quiet_NaN() : m;
 }
 
 double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {

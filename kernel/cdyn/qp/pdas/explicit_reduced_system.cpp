@@ -13,14 +13,14 @@ namespace cdyn {
 
 namespace {
 
-// True if the rows of every column of M come in increasing order.
-bool sorted_columns(const SparseMatrix& M) {
+// max |i − j| over M's entries (i, j): a column j holds rows within j ± the bandwidth.
+int bandwidth(const SparseMatrix& M) {
   const int* outer = M.outerIndexPtr();
   const int* inner = M.innerIndexPtr();
+  int band = 0;
   for (int j = 0; j < M.outerSize(); ++j)
-    for (int k = outer[j] + 1; k < outer[j + 1]; ++k)
-      if (inner[k] <= inner[k - 1]) return false;
-  return true;
+    for (int k = outer[j]; k < outer[j + 1]; ++k) band = std::max(band, std::abs(inner[k] - j));
+  return band;
 }
 
 // True if every column j < n of M stores its diagonal entry.
@@ -54,7 +54,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   S_ = qp.S;
   S_.makeCompressed();
   if (!has_diagonal(S_, n_)) throw NumericalError("pdas: S has a zero diagonal entry: it is not positive definite");
-  sorted_columns_ = sorted_columns(S_);
+  bandwidth_ = bandwidth(S_);
   if (opt_.pdas_cg_only) {
     // No factor: CG on S̃ for every held set (a breakdown of CG, pᵀSp ≤ 0, is reported
     // as non-convergence by solve_tilde).
@@ -330,18 +330,18 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
           if (held[inner[k]]) b[i] -= s[k] * value[inner[k]];
   } else {
     // The scatter, its rows cut into one range per thread: each part walks the held
-    // columns and updates its own rows only, so every b_i gets its terms in the order of
-    // one thread (j increasing).  A column lies near its diagonal in a mesh's numbering,
-    // and one whose rows all fall outside the range is skipped on its first and last.
-    // (One thread: this loop was a tenth of the main thread's time in the impact window
-    // at n = 320, where the other thread waited for it.)  The skip reads a column's
-    // first and last rows as its least and greatest: rows sorted, else one part.
-    const int parts = sorted_columns_ && 5L * n_held >= kParallelWork ? thread_count() : 1;
+    // columns that can reach its rows (those within S's bandwidth of them: a mesh's
+    // numbering keeps it small) and updates its own rows only, so every b_i gets its
+    // terms in the order of one thread (j increasing).  (On one thread this loop was a
+    // tenth of the main thread's time in the impact window at n = 320, where the other
+    // thread waited for it.)
+    const int parts = 5L * n_held >= kParallelWork ? thread_count() : 1;
 #pragma omp parallel for schedule(static, 1) if (parts > 1)
     for (int part = 0; part < parts; ++part) {
       const int lo = static_cast<int>(long(n_) * part / parts), hi = static_cast<int>(long(n_) * (part + 1) / parts);
-      for (int j = 0; j < n_; ++j) {
-        if (!held[j] || outer[j] == outer[j + 1] || inner[outer[j]] >= hi || inner[outer[j + 1] - 1] < lo) continue;
+      const int first = std::max(0, lo - bandwidth_), last = static_cast<int>(std::min<long>(n_, long(hi) + bandwidth_));
+      for (int j = first; j < last; ++j) {
+        if (!held[j]) continue;
         for (int k = outer[j]; k < outer[j + 1]; ++k)
           if (inner[k] >= lo && inner[k] < hi) b[inner[k]] -= s[k] * value[j];
       }

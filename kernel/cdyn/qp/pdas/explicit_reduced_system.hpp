@@ -97,7 +97,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   PDASCounters& counters_;
   int n_ = 0;
   SparseMatrix S_, S_tilde_;              // the last S seen; S with the held set eliminated
-  bool sorted_columns_ = false;           // S_'s rows in increasing order in every column
+  int bandwidth_ = 0;                     // max |i − j| over S_'s entries
   SparseCholesky chol_;
   HeldSet factor_held_;                   // the held set the factor currently factorizes
   // Most unknowns held (QPOptions::pdas_free_block): the factor is that of S̃ on I⁺ alone.
