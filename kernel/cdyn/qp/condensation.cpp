@@ -228,9 +228,14 @@ Eigen::VectorXd StaticCondensation::kept(const Eigen::VectorXd& x) const {
 // r_c,j = r_j − Σ_b S_jb y_b with y = S_bb⁻¹ r_b, the terms subtracted one by one in
 // the order of b.
 Eigen::VectorXd StaticCondensation::reduce(const Eigen::VectorXd& r) const {
+  // (the blocks are independent: shared among the threads, each solved as on one)
   Eigen::VectorXd y(n_condensed());
-  for (int k = 0; k < n_condensed(); ++k) y[k] = r[condensed_[k]];
-  for (int g = 0; g + 1 < static_cast<int>(first_.size()); ++g) solve_block(g, y.data() + first_[g]);
+  const int n_blocks = static_cast<int>(first_.size()) - 1;
+#pragma omp parallel for schedule(static) if (n_condensed() >= kParallelWork)
+  for (int g = 0; g < n_blocks; ++g) {
+    for (int k = first_[g]; k < first_[g + 1]; ++k) y[k] = r[condensed_[k]];
+    solve_block(g, y.data() + first_[g]);
+  }
   const int* outer = S_bv_.outerIndexPtr();
   const int* inner = S_bv_.innerIndexPtr();
   const double* v = S_bv_.valuePtr();
@@ -246,6 +251,7 @@ Eigen::VectorXd StaticCondensation::reduce(const Eigen::VectorXd& r) const {
 
 Eigen::VectorXd StaticCondensation::expand(const Eigen::VectorXd& X_v, const Eigen::VectorXd& r) const {
   Eigen::VectorXd X(n());
+#pragma omp parallel for schedule(static) if (n_kept() >= kParallelWork)
   for (int k = 0; k < n_kept(); ++k) X[kept_[k]] = X_v[k];
   const int n_blocks = static_cast<int>(first_.size()) - 1;
 #pragma omp parallel for schedule(static) if (S_bv_.nonZeros() >= kParallelWork)
@@ -265,7 +271,10 @@ Eigen::VectorXd StaticCondensation::expand(const Eigen::VectorXd& X_v, const Eig
 }
 
 Eigen::VectorXd StaticCondensation::expand_reaction(const Eigen::VectorXd& lambda_v) const {
-  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(n());
+  Eigen::VectorXd lambda(n());
+#pragma omp parallel for schedule(static) if (n() >= kParallelWork)
+  for (int i = 0; i < n(); ++i) lambda[i] = 0.0;
+#pragma omp parallel for schedule(static) if (n_kept() >= kParallelWork)
   for (int k = 0; k < n_kept(); ++k) lambda[kept_[k]] = lambda_v[k];
   return lambda;
 }
