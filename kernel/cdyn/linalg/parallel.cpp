@@ -55,6 +55,12 @@ double dot(long n, const double* x, const double* y) {
   return sum;
 }
 
+void for_each_block(long n, const std::function<void(long, long)>& f) {
+  const int blocks = block_count(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+  for (int b = 0; b < blocks; ++b) f(long(b) * kBlock, std::min<long>(n, long(b + 1) * kBlock));
+}
+
 double max_abs(const Eigen::VectorXd& x, const Eigen::VectorXd* scale) {
   const long n = x.size();
   if (scale && scale->size() != n)

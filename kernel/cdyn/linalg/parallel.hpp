@@ -25,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 
 #include "cdyn/base/sparse.hpp"
 
@@ -49,6 +50,21 @@ Eigen::VectorXd symmetric_times(const SparseMatrix& S, const Eigen::VectorXd& x)
 // xᵀy, summed by blocks (rule 2).
 double dot(long n, const double* x, const double* y);
 double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y);
+
+// f(begin, end) on the blocks [k kBlock, min(n, (k + 1) kBlock)) of n entries, the blocks
+// shared among the threads (one thread below kParallelWork entries).
+void for_each_block(long n, const std::function<void(long, long)>& f);
+
+// An entry-by-entry expression of vectors (sums, scalings, quotients; no products),
+// evaluated by blocks shared among the threads: each entry is computed as Eigen computes
+// it, so the same bits on any number of threads.  (The schemes' vector updates, one pass
+// each over the unknowns, ran on the main thread alone while the other one waited.)
+template <class Expression>
+Eigen::VectorXd evaluated(const Eigen::MatrixBase<Expression>& e) {
+  Eigen::VectorXd out(e.size());
+  for_each_block(e.size(), [&](long begin, long end) { out.segment(begin, end - begin) = e.segment(begin, end - begin); });
+  return out;
+}
 
 // max_i |x_i| / scale_i (|x_i| without a scale), NaN if an entry is NaN: a maximum is
 // the same in any order, so the entries are shared among the threads.

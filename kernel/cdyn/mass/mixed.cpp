@@ -91,7 +91,7 @@ class MixedMassModel final : public MassModel {
     check_size(Wdot, B_.cols(), "the displacement rate");
     if (identity_) return Wdot;
     const Eigen::VectorXd rhs = transpose_times(Bt_, Wdot);  // B Ẇ, gathered from Bᵀ's columns
-    if (diagonal_) return rhs.cwiseQuotient(Cdiag_);
+    if (diagonal_) return evaluated(rhs.cwiseQuotient(Cdiag_));
     if (!cholC_) {
       cholC_ = std::make_unique<Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>>();
       within_thread_count([&] { cholC_->compute(C_); });

@@ -29,11 +29,11 @@ class BackwardEuler final : public StepQPScheme {
     StepStats stats;
     constrain_at(s.t + dt_);  // U^{n+1} ∈ K̄^h(t^{n+1})
     // (c² + αc) M Uⁿ + c Bᵀ Vⁿ + βc A Uⁿ + L
-    Eigen::VectorXd r = inertia(c * c + damping_.alpha * c, s.U, c, s.V) + p_.load(s.t + dt_);
+    Eigen::VectorXd r = evaluated(inertia(c * c + damping_.alpha * c, s.U, c, s.V) + p_.load(s.t + dt_));
     if (damping_.beta > 0.0) r += damping_.beta * c * symmetric_times(p_.A, s.U);
     const Eigen::VectorXd U1 = solve(r, s, stats);
-    stats.dissipated = damping_work(U1 - s.U, dt_);
-    s.V = p_.mass->velocity(c * (U1 - s.U));
+    if (damping_.alpha > 0.0 || damping_.beta > 0.0) stats.dissipated = damping_work(U1 - s.U, dt_);
+    s.V = p_.mass->velocity(evaluated(c * (U1 - s.U)));
     s.U = U1;
     s.t += dt_;
     return stats;

@@ -142,7 +142,7 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
 
 Eigen::VectorXd FullStepReconstruction::by_local_basis(const Eigen::VectorXd& U, double t, double* kkt) {
   const SparseMatrix& Z = modes_.Z;
-  Eigen::VectorXd r = transpose_times(Z, p_.load(t) - symmetric_times(p_.A, U));
+  Eigen::VectorXd r = transpose_times(Z, evaluated(p_.load(t) - symmetric_times(p_.A, U)));
   set_bounds(U, modes_.pinned, t);
   // The warm start's active set: the PDAS rule at the last solution with this step's
   // bounds and force, not the last active set itself.  The massful part moves the data
@@ -159,7 +159,7 @@ Eigen::VectorXd FullStepReconstruction::by_local_basis(const Eigen::VectorXd& U,
   has_last_ = true;
   SX_ = last_.reaction + qp_.r;  // S X (the reaction is S X − r)
   if (kkt) *kkt = last_.kkt_residual;
-  return U + transpose_times(Zt_, last_.X);
+  return evaluated(U + transpose_times(Zt_, last_.X));
 }
 
 FullStepReconstruction::Point FullStepReconstruction::last_point() const {

@@ -94,12 +94,12 @@ class Midpoint final : public StepQPScheme {
     if (at_end_) {  // (2c² + αc) M Uⁿ + 2c Bᵀ Vⁿ + (βc − ½) A Uⁿ + L
       U1 = solve(inertia(2 * c * c + alpha * c, s.U, 2 * c, s.V) + (beta * c - 0.5) * symmetric_times(p_.A, s.U) + L, s, stats);
     } else {        // (4c² + 2αc) M Uⁿ + 2c Bᵀ Vⁿ + 2βc A Uⁿ + L
-      Eigen::VectorXd r = inertia(4 * c * c + 2 * alpha * c, s.U, 2 * c, s.V) + L;
+      Eigen::VectorXd r = evaluated(inertia(4 * c * c + 2 * alpha * c, s.U, 2 * c, s.V) + L);
       if (beta > 0.0) r += 2 * beta * c * symmetric_times(p_.A, s.U);
-      U1 = 2.0 * solve(r, s, stats) - s.U;
+      U1 = evaluated(2.0 * solve(r, s, stats) - s.U);
     }
-    stats.dissipated = damping_work(U1 - s.U, dt_);
-    s.V = 2.0 * p_.mass->velocity(c * (U1 - s.U)) - s.V;
+    if (alpha > 0.0 || beta > 0.0) stats.dissipated = damping_work(U1 - s.U, dt_);
+    s.V = evaluated(2.0 * p_.mass->velocity(evaluated(c * (U1 - s.U))) - s.V);
     s.t += dt_;
     s.U = full_step_ ? (*full_step_)(U1, s.t, &stats.reconstruction_kkt) : U1;
     return stats;
