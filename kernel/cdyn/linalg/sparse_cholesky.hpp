@@ -6,10 +6,11 @@
 // when CHOLMOD finds it worth it), and between factorizations replace_by_identity() /
 // restore() change one row and column of the factorized matrix (cholmod_rowdel /
 // cholmod_rowadd: a rank-2 modification of L, Davis & Hager 2005) without refactorizing:
-// what an active-set method needs when a few constraints switch.  A supernodal factor is
-// solved by the kernel's own sweeps, by subtrees of its elimination tree on the kernel's
-// threads (linalg/supernodal_solve.hpp); a simplicial one (small, or after row updates)
-// by CHOLMOD's solve.
+// what an active-set method needs when a few constraints switch.  A supernodal factor
+// with narrow supernodes (a 2D mesh's) is solved by the kernel's own sweeps, by subtrees
+// of its elimination tree on the kernel's threads (linalg/supernodal_solve.hpp); one with
+// most entries in wide supernodes (3D), and a simplicial one (small, or after row
+// updates), by CHOLMOD's solve.
 #pragma once
 
 #include <Eigen/Core>

@@ -5,8 +5,9 @@
 // it is not set, one per core (the OpenMP convention).  Their results do not depend on
 // the count, bit for bit.
 //
-// CHOLMOD's supernodal factorization, and the wide supernodes of the kernel's own solve
-// with its factor (linalg/supernodal_solve.hpp), spend their time in the BLAS, whose threads
+// CHOLMOD's supernodal factorization, and its solve with a factor whose entries sit mostly
+// in wide supernodes (a 3D one: SupernodalSolve::suits in linalg/supernodal_solve.hpp;
+// the kernel's own sweeps are plain loops), spend their time in the BLAS, whose threads
 // are the BLAS's own: OpenBLAS reads OPENBLAS_NUM_THREADS, then OMP_NUM_THREADS, then
 // takes one per core.  OpenBLAS on more than one thread factorizes and solves with other
 // blockings (its threaded dpotrf, dgemv), which changes the factor's round-off: a

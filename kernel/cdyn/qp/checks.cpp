@@ -60,6 +60,18 @@ void check_symmetric(const SparseMatrix& M, const std::string& what) {
     for (; next[i] < start[i + 1] && row[next[i]] < i; ++next[i]) check(row[next[i]], i, value[next[i]]);
 }
 
+// The first check that entry i of r and the bounds fails, in the order of their messages.
+enum class EntryCheck { Fine, RNotFinite, BoundNaN, NoFiniteValue, LowerAboveUpper };
+EntryCheck failed_check(const BoundQP& qp, int i) {
+  const double l = qp.lower[i], u = qp.upper[i];
+  if (!std::isfinite(qp.r[i])) return EntryCheck::RNotFinite;
+  if (std::isnan(l) || std::isnan(u)) return EntryCheck::BoundNaN;
+  if (l == std::numeric_limits<double>::infinity() || u == -std::numeric_limits<double>::infinity())
+    return EntryCheck::NoFiniteValue;
+  if (l > u) return EntryCheck::LowerAboveUpper;
+  return EntryCheck::Fine;
+}
+
 }  // namespace
 
 void check_problem(const BoundQP& qp, bool matrices) {
@@ -98,27 +110,24 @@ void check_problem(const BoundQP& qp, bool matrices) {
       check_symmetric(f.C, "C");
     }
   }
-  // (called every step: the index text is made only for a message, not per unknown;
-  // the entries are first checked shared among the threads, and the first failing one
-  // looked for on one thread only if there is one)
-  auto fine = [&](int i) {
-    return std::isfinite(qp.r[i]) && !std::isnan(qp.lower[i]) && !std::isnan(qp.upper[i]) &&
-           qp.lower[i] != std::numeric_limits<double>::infinity() &&
-           qp.upper[i] != -std::numeric_limits<double>::infinity() && qp.lower[i] <= qp.upper[i];
-  };
+  // (called every step: the entries are checked shared among the threads, and the
+  // message, with the index text, made only for the first failing one)
   bool all_fine = true;
 #pragma omp parallel for schedule(static) reduction(&& : all_fine) if (3L * n >= kParallelWork)
-  for (int i = 0; i < n; ++i) all_fine = all_fine && fine(i);
+  for (int i = 0; i < n; ++i) all_fine = all_fine && failed_check(qp, i) == EntryCheck::Fine;
   if (all_fine) return;
-  auto at = [](int i) { return "[" + std::to_string(i) + "]"; };
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(qp.r[i])) throw InputError("BoundQP: r" + at(i) + " = " + to_text(qp.r[i]) + " is not finite");
-    if (std::isnan(qp.lower[i]) || std::isnan(qp.upper[i])) throw InputError("BoundQP: bound" + at(i) + " is NaN");
-    if (qp.lower[i] == std::numeric_limits<double>::infinity() ||
-        qp.upper[i] == -std::numeric_limits<double>::infinity())
-      throw InputError("BoundQP: bounds" + at(i) + " exclude every finite value: the constraint set is empty");
-    if (qp.lower[i] > qp.upper[i])
-      throw InputError("BoundQP: lower" + at(i) + " = " + to_text(qp.lower[i]) + " > upper" + at(i) + " = " +
+  int i = 0;
+  while (failed_check(qp, i) == EntryCheck::Fine) ++i;
+  const std::string at = std::string("[").append(std::to_string(i)).append("]");
+  switch (failed_check(qp, i)) {
+    case EntryCheck::RNotFinite:
+      throw InputError("BoundQP: r" + at + " = " + to_text(qp.r[i]) + " is not finite");
+    case EntryCheck::BoundNaN:
+      throw InputError("BoundQP: bound" + at + " is NaN");
+    case EntryCheck::NoFiniteValue:
+      throw InputError("BoundQP: bounds" + at + " exclude every finite value: the constraint set is empty");
+    default:
+      throw InputError("BoundQP: lower" + at + " = " + to_text(qp.lower[i]) + " > upper" + at + " = " +
                        to_text(qp.upper[i]) + ": the constraint set is empty");
   }
 }
