@@ -168,3 +168,37 @@ TEST(MaskedCG, ResumingIsTheUninterruptedIteration) { resuming_is_the_uninterrup
 TEST(MaskedCG, ResumingOnTheFreeRowsIsTheUninterruptedIteration) { resuming_is_the_uninterrupted_iteration(true); }
 
 }  // namespace
+
+namespace {
+
+// One iteration object serves the PDAS iterates of a whole time loop, each with its held
+// set.  On the free rows alone it clears only the rows its last such solve wrote: a solve
+// must then give the bits of a fresh object's, whatever sets came before (here two with
+// most rows held, then one with most free, then the first again).
+TEST(MaskedCG, AReusedIterationGivesTheBitsOfAFreshOne) {
+  std::mt19937 gen(11);
+  const int n = 90;
+  const cdyn::SparseMatrix S = random_spd(n, gen);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = U(gen);
+  auto held_every = [&](int period, int offset, bool most) {
+    std::vector<char> held(n);
+    for (int i = 0; i < n; ++i) held[i] = (i % period == offset) != most;
+    return held;
+  };
+  const std::vector<std::vector<char>> sets = {held_every(5, 0, true), held_every(4, 1, true), held_every(3, 2, false),
+                                               held_every(5, 0, true)};
+  cdyn::MaskedCG reused(S);
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    VectorXd y_reused = VectorXd::Constant(n, 0.1), y_fresh = y_reused;
+    const cdyn::MaskedCGResult a = reused.solve(sets[k], b, y_reused, 1e-12, 200);
+    const cdyn::MaskedCGResult f = cdyn::MaskedCG(S).solve(sets[k], b, y_fresh, 1e-12, 200);
+    ASSERT_TRUE(a.converged) << k;
+    EXPECT_EQ(a.iterations, f.iterations) << k;
+    EXPECT_EQ(a.scaled_residual, f.scaled_residual) << k;
+    for (int i = 0; i < n; ++i) EXPECT_EQ(y_reused[i], y_fresh[i]) << k << " " << i;
+  }
+}
+
+}  // namespace

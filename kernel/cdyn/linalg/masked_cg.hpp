@@ -69,10 +69,19 @@ class MaskedCG {
   Eigen::VectorXd D_, inverse_sqrt_D_;  // diag(S), diag(S)^{-1/2}
   Eigen::VectorXd r_, r_hat_, p_, t_, w_, q_;
   std::vector<double> block_rr_;  // the blocks' shares of r̂ᵀr̂ (linalg/parallel.hpp)
+  // The set-up of a fresh solve, over all rows or over the free ones; each returns the
+  // scaled residual of the first guess.
+  double set_up_on_all_rows(const std::vector<char>& held, const Eigen::VectorXd& b, Eigen::VectorXd& y, double tol);
+  double set_up_on_free_rows(const std::vector<char>& held, const Eigen::VectorXd& b, Eigen::VectorXd& y, double tol);
+
   // most rows held: the iterations on the free rows alone (free_, in increasing order)
   bool compact_ = false;
   std::vector<int> free_;
   SymmetricGaussSeidel::FreeRows free_rows_;
+  // zero_outside_: the work vectors vanish outside the rows written_ (by the last solve
+  // on free rows), so that the next one clears those rows alone
+  bool zero_outside_ = false;
+  std::vector<int> written_;
   // the state an iteration that converged stops in, for resume
   bool resumable_ = false;
   double rr_ = 0.0, rr_next_ = 0.0, last_scaled_ = 0.0;  // r̂ᵀr̂ for p_, r̂ᵀr̂ now, the test's value

@@ -25,7 +25,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <functional>
+#include <vector>
 
 #include "cdyn/base/sparse.hpp"
 
@@ -64,6 +66,33 @@ Eigen::VectorXd evaluated(const Eigen::MatrixBase<Expression>& e) {
   Eigen::VectorXd out(e.size());
   for_each_block(e.size(), [&](long begin, long end) { out.segment(begin, end - begin) = e.segment(begin, end - begin); });
   return out;
+}
+
+// The i < n with p(i), in increasing order, by blocks of kBlock shared among the threads:
+// each block counts its indices, then writes them from its offset, so the list is the
+// same on any number of threads.
+template <class Predicate>
+std::vector<int> indices_where(int n, Predicate p) {
+  const int blocks = block_count(n);
+  const bool threaded = 4L * n >= kParallelWork;
+  std::vector<int> offset(blocks + 1, 0);
+#pragma omp parallel for schedule(static) if (threaded)
+  for (int b = 0; b < blocks; ++b) {
+    const int end = std::min(n, (b + 1) * kBlock);
+    int count = 0;
+    for (int i = b * kBlock; i < end; ++i) count += p(i) ? 1 : 0;
+    offset[b + 1] = count;
+  }
+  for (int b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
+  std::vector<int> list(offset[blocks]);
+#pragma omp parallel for schedule(static) if (threaded)
+  for (int b = 0; b < blocks; ++b) {
+    const int end = std::min(n, (b + 1) * kBlock);
+    int k = offset[b];
+    for (int i = b * kBlock; i < end; ++i)
+      if (p(i)) list[k++] = i;
+  }
+  return list;
 }
 
 // max_i |x_i| / scale_i (|x_i| without a scale), NaN if an entry is NaN: a maximum is

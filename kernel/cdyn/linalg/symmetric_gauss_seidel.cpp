@@ -33,6 +33,8 @@ SymmetricGaussSeidel::SymmetricGaussSeidel(const SparseMatrix& S) {
   rows_.resize(n);
   std::vector<int> next(colour_start_.begin(), colour_start_.end() - 1);
   for (int i = 0; i < n; ++i) rows_[next[colour_[i]]++] = i;
+  position_.resize(n);
+  for (int k = 0; k < n; ++k) position_[rows_[k]] = k;
 
   // The triangles of Ŝ row by row in sweep order (S symmetric: column i is row i).
   for (Triangle* t : {&lower_, &upper_}) {
@@ -127,15 +129,40 @@ double SymmetricGaussSeidel::apply(const std::vector<char>& held, const double* 
   return dot(n, v, q);
 }
 
-SymmetricGaussSeidel::FreeRows SymmetricGaussSeidel::free_rows(const std::vector<char>& held) const {
+SymmetricGaussSeidel::FreeRows SymmetricGaussSeidel::free_rows(const std::vector<int>& free) const {
+  // (rows_ lists each colour's rows in increasing order, so the free rows, taken in
+  // increasing order, come out increasing within each colour)
   FreeRows f;
-  f.colour_start.assign(1, 0);
-  for (int c = 0; c < colours(); ++c) {
-    for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k)
-      if (!held[rows_[k]]) f.position.push_back(k);
-    f.colour_start.push_back(static_cast<int>(f.position.size()));
-  }
+  f.colour_start.assign(colours() + 1, 0);
+  for (int i : free) ++f.colour_start[colour_[i] + 1];
+  for (int c = 0; c < colours(); ++c) f.colour_start[c + 1] += f.colour_start[c];
+  f.position.resize(free.size());
+  std::vector<int> next(f.colour_start.begin(), f.colour_start.end() - 1);
+  for (int i : free) f.position[next[colour_[i]]++] = position_[i];
   return f;
+}
+
+void SymmetricGaussSeidel::solve_lower(const FreeRows& free, const double* in, double* out) const {
+  const int colours = static_cast<int>(free.colour_start.size()) - 1;
+#pragma omp parallel if (threaded())
+  for (int c = 0; c < colours; ++c) {
+#pragma omp for schedule(static)
+    for (int m = free.colour_start[c]; m < free.colour_start[c + 1]; ++m) {
+      const int k = free.position[m];
+      const int i = rows_[k];
+      out[i] = minus_row(lower_, k, in[i], out);
+    }
+  }
+}
+
+void SymmetricGaussSeidel::multiply_lower(const FreeRows& free, const double* in, double* out) const {
+  const int m_free = static_cast<int>(free.position.size());
+#pragma omp parallel for schedule(static) if (threaded())
+  for (int m = 0; m < m_free; ++m) {
+    const int k = free.position[m];
+    const int i = rows_[k];
+    out[i] = plus_row(lower_, k, in[i], in);
+  }
 }
 
 // The sweeps of apply() over the free rows: the held rows' t and w, which the free rows

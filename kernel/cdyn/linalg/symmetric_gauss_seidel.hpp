@@ -51,12 +51,13 @@ class SymmetricGaussSeidel {
   double apply(const std::vector<char>& held, const double* v, double* t, double* w, double* q) const;
 
   // The free rows of a held set in sweep order, by colour: for sweeps that visit those
-  // rows only, when most rows are held (their t, w, q are 0 and stay so).
+  // rows only, when most rows are held (their t, w, q are 0 and stay so).  From the free
+  // rows listed in increasing order: O(|I|), with no pass over the held rows.
   struct FreeRows {
     std::vector<int> position;      // k: rows_[k] free, increasing within each colour
     std::vector<int> colour_start;  // position[colour_start[c] .. colour_start[c+1]) have colour c
   };
-  FreeRows free_rows(const std::vector<char>& held) const;
+  FreeRows free_rows(const std::vector<int>& free) const;
   // apply() on the free rows alone: q_I = (Â v)_I and t_I = (L̂⁻ᵀ v)_I, with t, w, q 0
   // on the held rows on entry (left so).
   void apply(const FreeRows& free, const double* v, double* t, double* w, double* q) const;
@@ -64,6 +65,10 @@ class SymmetricGaussSeidel {
   void solve_lower(const std::vector<char>& held, const double* in, double* out) const;
   // out = L̂ in (in_A = 0 assumed).
   void multiply_lower(const std::vector<char>& held, const double* in, double* out) const;
+  // The same on the free rows alone: out_I, with out (solve_lower) or in (multiply_lower)
+  // 0 on the held rows on entry; the held rows of out are not written.
+  void solve_lower(const FreeRows& free, const double* in, double* out) const;
+  void multiply_lower(const FreeRows& free, const double* in, double* out) const;
 
  private:
   bool threaded() const;  // whether a sweep is long enough for threads (linalg/parallel.hpp)
@@ -77,6 +82,7 @@ class SymmetricGaussSeidel {
   Eigen::VectorXd sqrt_diagonal_;
   std::vector<int> colour_;
   std::vector<int> rows_;          // the unknowns sorted by colour
+  std::vector<int> position_;      // position_[rows_[k]] = k
   std::vector<int> colour_start_;  // rows_[colour_start_[c] .. colour_start_[c+1]) have colour c
   Triangle lower_, upper_;
 };

@@ -21,17 +21,6 @@ Eigen::VectorXd scaling_diagonal(const BoundQP& qp) {
   return D;
 }
 
-namespace {
-
-// F_i = X_i − P_[l_i, u_i](X_i − λ_i / D_i).
-double natural_residual_entry(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
-                              const Eigen::VectorXd& D, int i) {
-  const double step = X[i] - reaction[i] / D[i];
-  return X[i] - std::clamp(step, qp.lower[i], qp.upper[i]);
-}
-
-}  // namespace
-
 Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
                                  const Eigen::VectorXd& D) {
   const int n = qp.size();
@@ -81,29 +70,7 @@ std::vector<int> active_set(const BoundQP& qp, const Eigen::VectorXd& X, const E
     return l == u || (std::isfinite(l) && reaction[i] > D[i] * (X[i] - l)) ||
            (std::isfinite(u) && reaction[i] < D[i] * (X[i] - u));
   };
-  // By blocks of kBlock unknowns shared among the threads: each block counts its active
-  // unknowns, then writes them from its offset, so the list is in increasing order on
-  // any number of threads.
-  const int n = qp.size(), blocks = block_count(n);
-  const bool threaded = 4L * n >= kParallelWork;
-  std::vector<int> offset(blocks + 1, 0);
-#pragma omp parallel for schedule(static) if (threaded)
-  for (int b = 0; b < blocks; ++b) {
-    const int end = std::min(n, (b + 1) * kBlock);
-    int count = 0;
-    for (int i = b * kBlock; i < end; ++i) count += is_active(i);
-    offset[b + 1] = count;
-  }
-  for (int b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
-  std::vector<int> active(offset[blocks]);
-#pragma omp parallel for schedule(static) if (threaded)
-  for (int b = 0; b < blocks; ++b) {
-    const int end = std::min(n, (b + 1) * kBlock);
-    int k = offset[b];
-    for (int i = b * kBlock; i < end; ++i)
-      if (is_active(i)) active[k++] = i;
-  }
-  return active;
+  return indices_where(qp.size(), is_active);
 }
 
 void hold_at_bounds(const BoundQP& qp, const std::vector<int>& active, Eigen::VectorXd& X) {
