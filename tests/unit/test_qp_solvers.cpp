@@ -168,6 +168,14 @@ void expect_kkt(const BoundQP& qp, const QPResult& res, double tol, const std::s
     EXPECT_LE(res.X[i], qp.upper[i] + tol * scale) << who << " i=" << i;
   }
   const VectorXd D = cdyn::scaling_diagonal(qp);
+  // the reaction is S X − r (PDAS updates it from iterate to iterate on the rows held at
+  // both: round-off of the product's size) and the active list is the rule's at it
+  if (!qp.saddle) {
+    const VectorXd gradient = qp.S * res.X - qp.r;
+    const double terms = (qp.S.cwiseAbs() * res.X.cwiseAbs()).maxCoeff() + qp.r.lpNorm<Eigen::Infinity>();
+    EXPECT_LE((res.reaction - gradient).lpNorm<Eigen::Infinity>(), 1e-13 * terms) << who;
+  }
+  EXPECT_EQ(res.active, cdyn::active_set(qp, res.X, res.reaction, D)) << who;
   std::vector<char> is_active(qp.size(), 0);
   for (int i : res.active) is_active[i] = 1;
   for (int i = 0; i < qp.size(); ++i) {

@@ -9,6 +9,7 @@
 // S, r or the bounds, so one `tol` means the same thing for every solver.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -21,6 +22,14 @@ namespace cdyn {
 // D = diag(S); in saddle form diag(A) + c Σ_k B_kj² / C_kk (C replaced by its diagonal:
 // a scaling, not the exact diagonal, which would need C⁻¹).
 Eigen::VectorXd scaling_diagonal(const BoundQP& qp);
+
+// F_i = X_i − P_[l_i, u_i](X_i − λ_i / D_i), one entry of the natural residual below
+// (inline: a solver's own pass over the unknowns computes it as kkt_maxima does).
+inline double natural_residual_entry(const BoundQP& qp, const Eigen::VectorXd& X, const Eigen::VectorXd& reaction,
+                                     const Eigen::VectorXd& D, int i) {
+  const double step = X[i] - reaction[i] / D[i];
+  return X[i] - std::clamp(step, qp.lower[i], qp.upper[i]);
+}
 
 // F(X) = X − P(X − D⁻¹ λ), the natural residual of the KKT conditions.
 Eigen::VectorXd natural_residual(const BoundQP& qp, const Eigen::VectorXd& X,

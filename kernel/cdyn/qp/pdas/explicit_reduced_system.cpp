@@ -357,22 +357,54 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
 // is r_I − S_IA X_A, so (S X − r)_I = −(b̃ − S̃X)_I; only the held rows need S, one
 // column each (S symmetric: column i is row i), |A| columns instead of all n.  After a
 // solve with the factor, the whole product.
-Eigen::VectorXd ExplicitReducedSystem::reaction(const BoundQP& qp, const QuadraticForm& form,
-                                                const Eigen::VectorXd& X, const HeldSet& held) const {
-  if (!last_by_cg_) return ReducedSystem::reaction(qp, form, X, held);
-  const Eigen::VectorXd& residual = cg_->residual();
-  Eigen::VectorXd lam(n_);
+// From the previous iterate of the same QP, the rows held at both change only through
+// the columns where X moved: λ_i += Σ_j S_ij (X_j − X⁰_j), over those columns in
+// increasing order (a scatter, on one thread).  Where few moved — the free unknowns of
+// resting or chattering contact, most of S's rows held — that reads their columns
+// instead of every held row.  Each λ_i then carries the round-off of its updates, a few
+// ε ‖S_i‖ ‖X‖ like the product's own; the other rows are gathered as the product does.
+void ExplicitReducedSystem::reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X,
+                                     const HeldSet& held, Eigen::VectorXd& lam, const Iterate* previous) const {
+  // (the scatter reads a column for each moved unknown on one thread, the whole product
+  // every row on all of them: it pays for up to a quarter of the columns.  X moves on the
+  // free rows, and on a held row only if its bound changed.)
+  const auto few = [&](std::size_t count) { return 4 * count <= static_cast<std::size_t>(n_); };
+  std::vector<int> moved;
+  bool update = previous && lam.size() == n_ && previous->X.size() == n_ && few(std::count(held.begin(), held.end(), 0));
+  if (update) {
+    moved = indices_where(n_, [&](int j) { return X[j] != previous->X[j]; });
+    update = few(moved.size());
+  }
+  if (!update) previous = nullptr;
+  if (!previous && !last_by_cg_) {
+    lam = form.gradient(X);
+    return;
+  }
+  const int* outer = S_.outerIndexPtr();
+  const int* inner = S_.innerIndexPtr();
+  const double* s = S_.valuePtr();
+  if (previous) {
+    const HeldSet& held0 = previous->held;
+    for (int j : moved) {
+      const double dx = X[j] - previous->X[j];
+      for (int k = outer[j]; k < outer[j + 1]; ++k)
+        if (held[inner[k]] && held0[inner[k]]) lam[inner[k]] += s[k] * dx;
+    }
+  } else {
+    lam.resize(n_);
+  }
+  const double* residual = last_by_cg_ ? cg_->residual().data() : nullptr;
 #pragma omp parallel for schedule(static) if (S_.nonZeros() >= kParallelWork)
   for (int i = 0; i < n_; ++i) {
-    if (!held[i]) {
+    if (previous && held[i] && previous->held[i]) continue;
+    if (!held[i] && residual) {
       lam[i] = -residual[i];
       continue;
     }
     double sum = 0.0;
-    for (SparseMatrix::InnerIterator it(S_, i); it; ++it) sum += it.value() * X[it.row()];
+    for (int k = outer[i]; k < outer[i + 1]; ++k) sum += s[k] * X[inner[k]];
     lam[i] = sum - qp.r[i];
   }
-  return lam;
 }
 
 Eigen::VectorXd ExplicitReducedSystem::solve_correction(const Eigen::VectorXd& b, double tol) {

@@ -55,8 +55,8 @@ class ExplicitReducedSystem : public ReducedSystem {
   void prepare(const BoundQP& qp, bool new_matrices) override;
   Eigen::VectorXd solve_fixed(const BoundQP& qp, const HeldSet& held, const Eigen::VectorXd& value,
                               double tol) override;
-  Eigen::VectorXd reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X,
-                           const HeldSet& held) const override;
+  void reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X, const HeldSet& held,
+                Eigen::VectorXd& lam, const Iterate* previous = nullptr) const override;
   void set_held(const HeldSet& held, bool fresh = false) override;
   Eigen::VectorXd solve_correction(const Eigen::VectorXd& b, double tol) override;
   double last_residual() const override { return last_cg_residual_; }

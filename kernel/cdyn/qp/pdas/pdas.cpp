@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -46,14 +47,34 @@ ActiveSet initial_active_set(const BoundQP& qp, const QPResult* warm_start) {
 }
 
 // The PDAS rule (HIK 2002, with the scaling D for their constant c): the next active
-// set from (X, λ), A_l = {λ_i + D_i(lower_i − X_i) > 0}, A_u = {λ_i + D_i(upper_i − X_i) < 0}.
-ActiveSet pdas_rule(const BoundQP& qp, const Eigen::VectorXd& D, const Eigen::VectorXd& X,
-                    const Eigen::VectorXd& lam) {
+// set from (X, λ), A_l = {λ_i + D_i(lower_i − X_i) > 0}, A_u = {λ_i + D_i(upper_i − X_i) < 0}
+// — the rule of QPResult::active (kkt.hpp's active_set), written as a difference.  In
+// the same pass, what the iteration asks of the new set: how many unknowns change
+// state, and the KKT measure's maxima ‖F‖∞ and ‖X‖∞ (kkt.hpp; the scale's ‖D⁻¹r‖∞ is
+// fixed in a solve) — one pass over the vectors instead of three (the rule, the set's
+// comparison, kkt_residual), each entry computed as kkt_maxima computes it.
+struct NextSet {
+  ActiveSet state;
+  long changes = 0;
+  double F = 0.0, x_max = 0.0;
+  bool finite = true;
+  double kkt_residual(double r_scale) const {
+    return KKTMaxima{finite ? F : std::numeric_limits<double>::infinity(), std::max(x_max, r_scale)}.residual();
+  }
+};
+NextSet pdas_rule(const BoundQP& qp, const Eigen::VectorXd& D, const Eigen::VectorXd& X, const Eigen::VectorXd& lam,
+                  const ActiveSet& state) {
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
   const int n = qp.size();
-  ActiveSet st(n, kFree);
-#pragma omp parallel for schedule(static) if (4L * n >= kParallelWork)
+  NextSet next;
+  next.state.assign(n, kFree);
+  ActiveSet& st = next.state;
+  long changes = 0;
+  double F = 0.0, x_max = 0.0;
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(+ : changes) reduction(max : F, x_max) reduction(&& : finite) \
+    if (6L * n >= kParallelWork)
   for (int i = 0; i < n; ++i) {
     if (l[i] == u[i])
       st[i] = kLower;
@@ -61,20 +82,39 @@ ActiveSet pdas_rule(const BoundQP& qp, const Eigen::VectorXd& D, const Eigen::Ve
       st[i] = kLower;
     else if (std::isfinite(u[i]) && lam[i] + D[i] * (u[i] - X[i]) < 0)
       st[i] = kUpper;
+    changes += st[i] != state[i];
+    const double f = std::abs(natural_residual_entry(qp, X, lam, D, i));
+    finite = finite && std::isfinite(f);
+    F = std::max(F, f);
+    x_max = std::max(x_max, std::abs(X[i]));
   }
-  return st;
+  next.changes = changes;
+  next.F = F;
+  next.x_max = x_max;
+  next.finite = finite;
+  return next;
 }
 
-// The held unknowns of an active set and the bound values they are held at (0 elsewhere).
-void held_at_bounds(const BoundQP& qp, const ActiveSet& state, HeldSet& held, Eigen::VectorXd& value) {
+// The held unknowns of an active set and the bound values they are held at (0 elsewhere);
+// returns ‖value‖∞ (for SolveTolerance).
+double held_at_bounds(const BoundQP& qp, const ActiveSet& state, HeldSet& held, Eigen::VectorXd& value) {
   const int n = qp.size();
   held.resize(n);
   value.resize(n);
-#pragma omp parallel for schedule(static) if (2L * n >= kParallelWork)
+  double value_max = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : value_max) if (2L * n >= kParallelWork)
   for (int i = 0; i < n; ++i) {
     held[i] = state[i] != kFree;
     value[i] = state[i] == kFree ? 0.0 : state[i] == kLower ? qp.lower[i] : qp.upper[i];
+    value_max = std::max(value_max, std::abs(value[i]));
   }
+  return value_max;
+}
+
+// The unknowns an active set holds, in increasing order: QPResult::active when λ is the
+// one the set was made from (the rule above is active_set's).
+std::vector<int> held_list(const ActiveSet& state) {
+  return indices_where(static_cast<int>(state.size()), [&](int i) { return state[i] != kFree; });
 }
 
 // At most two steps of iterative refinement of a result above tol, with the same
@@ -154,8 +194,8 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   if (warm_start && warm_start->X.size() == n) system.set_first_guess(warm_start->X);
   const SolveTolerance tolerance(qp, D, opt.tol);
   std::set<ActiveSet> seen;
-  HeldSet held;
-  Eigen::VectorXd value, X, lam;
+  HeldSet held, held0;           // this iterate's held set and the last one's
+  Eigen::VectorXd value, X, X0, lam;  // X0: the last iterate, whose λ lam holds
   bool tight = false;            // this iterate confirms a repeat found on a loose solve
   bool refactorized = false;     // the one fresh factorization has been spent
   bool cycled = false;
@@ -164,26 +204,34 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
     ++it;
     result.iterations = it;
     // Newton step: the minimizer with the active set held at its bounds.
-    held_at_bounds(qp, state, held, value);
-    X = system.solve_fixed(qp, held, value, tolerance(value, tight));
-    lam = system.reaction(qp, s.form, X, held);
-    const ActiveSet next = pdas_rule(qp, D, X, lam);
-    if (next == state && !tight && system.last_residual() > tolerance(value, true)) {
+    X0.swap(X);
+    held0.swap(held);
+    const double held_max = held_at_bounds(qp, state, held, value);
+    X = system.solve_fixed(qp, held, value, tolerance(held_max, tight));
+    const ReducedSystem::Iterate last{X0, held0};
+    system.reaction(qp, s.form, X, held, lam, it > 1 ? &last : nullptr);
+    NextSet next = pdas_rule(qp, D, X, lam, state);
+    if (next.changes == 0 && !tight && system.last_residual() > tolerance(held_max, true)) {
       tight = true;  // a repeat on a loose solve: confirm it on the same system solved to tol/2
       system.resume_next();
       continue;
     }
     tight = false;
-    if (next == state) {
+    if (next.changes == 0) {
       // X is exact up to the linear solve.  λ from a whole product (an inexact solve's
       // updated residual has drifted by round-off); refine if the residual says so.
-      if (system.last_inexact()) lam = s.form.gradient(X);
       result.X = X;
+      if (system.last_inexact()) {
+        lam = s.form.gradient(X);
+        result.kkt_residual = kkt_residual(qp, X, lam, &D);
+        result.active = active_set(qp, X, lam, D);
+      } else {
+        result.kkt_residual = next.kkt_residual(tolerance.r_scale());
+        result.active = held_list(state);
+      }
       result.reaction = lam;
-      result.kkt_residual = kkt_residual(qp, X, lam, &D);
-      result.active = active_set(qp, X, lam, D);
       result.converged = result.kkt_residual <= opt.tol;
-      refine(qp, s.form, system, held, tolerance(value, true), opt.tol, result);
+      refine(qp, s.form, system, held, tolerance(held_max, true), opt.tol, result);
       if (!result.converged && !refactorized && system.refactorization_may_help()) {
         refactorized = true;  // row updates or CG may have lost accuracy: a fresh factor, solve again
         system.set_held(held, /*fresh=*/true);
@@ -192,7 +240,7 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
       finished = true;
       return finish("active set repeated but the residual stays above tol: S is ill-conditioned");
     }
-    if (kkt_residual(qp, X, lam, &D) <= opt.tol) {
+    if (next.kkt_residual(tolerance.r_scale()) <= opt.tol) {
       // Degenerate unknowns (λ_i ≈ 0 at the bound) may still switch: X is good if the
       // residual with the whole product says so too (finish_result recomputes λ that way).
       result.X = X;
@@ -200,14 +248,14 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
       finished = result.converged;
       if (finished) return finish("");
     }
-    if (seen.count(next)) {
+    if (seen.count(next.state)) {
       // An active set comes back: PDAS would go round for ever.  Monotone convergence
       // holds only for an M-matrix S (HIK 2002, Thm 3.3) and exact solves.
       cycled = true;
       break;
     }
     seen.insert(state);
-    state = next;
+    state = std::move(next.state);
   }
   if (!cycled) {
     result.X = X;

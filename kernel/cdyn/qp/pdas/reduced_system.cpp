@@ -25,13 +25,17 @@ SolveTolerance::SolveTolerance(const BoundQP& qp, const Eigen::VectorXd& D, doub
     : tol_(tol), r_scale_(max_abs(qp.r, &D)) {}
 
 double SolveTolerance::operator()(const Eigen::VectorXd& held_values, bool tight) const {
-  const double scale = std::max(r_scale_, max_abs(held_values));
+  return (*this)(max_abs(held_values), tight);
+}
+
+double SolveTolerance::operator()(double held_max, bool tight) const {
+  const double scale = std::max(r_scale_, held_max);
   return (tight ? 0.5 * tol_ : std::max(0.5 * tol_, kLooseSolve)) * scale;
 }
 
-Eigen::VectorXd ReducedSystem::reaction(const BoundQP&, const QuadraticForm& form, const Eigen::VectorXd& X,
-                                        const HeldSet&) const {
-  return form.gradient(X);
+void ReducedSystem::reaction(const BoundQP&, const QuadraticForm& form, const Eigen::VectorXd& X, const HeldSet&,
+                             Eigen::VectorXd& lam, const Iterate*) const {
+  lam = form.gradient(X);
 }
 
 void replace_held_by_identity(const SparseMatrix& M, const HeldSet& held, SparseMatrix& out) {

@@ -69,6 +69,8 @@ class SolveTolerance {
  public:
   SolveTolerance(const BoundQP& qp, const Eigen::VectorXd& D, double tol);
   double operator()(const Eigen::VectorXd& held_values, bool tight) const;
+  double operator()(double held_max, bool tight) const;  // held_max = ‖X_A‖∞
+  double r_scale() const { return r_scale_; }           // ‖D⁻¹r‖∞
 
  private:
   double tol_, r_scale_;
@@ -88,9 +90,14 @@ class ReducedSystem {
   // residual an inexact solve must reach (SolveTolerance); direct solves ignore it.
   virtual Eigen::VectorXd solve_fixed(const BoundQP& qp, const HeldSet& held, const Eigen::VectorXd& value,
                                       double tol) = 0;
-  // λ = S X − r for the X that solve_fixed has just returned for `held`.
-  virtual Eigen::VectorXd reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X,
-                                   const HeldSet& held) const;
+  // λ = S X − r for the X that solve_fixed has just returned for `held`, into lam.
+  // previous: the last iterate of the same QP, with lam = λ at its X on entry (or null).
+  struct Iterate {
+    const Eigen::VectorXd& X;
+    const HeldSet& held;
+  };
+  virtual void reaction(const BoundQP& qp, const QuadraticForm& form, const Eigen::VectorXd& X, const HeldSet& held,
+                        Eigen::VectorXd& lam, const Iterate* previous = nullptr) const;
 
   // Makes the next solves those of `held` (fresh: a new factorization from scratch).
   virtual void set_held(const HeldSet& held, bool fresh = false) = 0;
