@@ -795,6 +795,12 @@ TEST(QPSolvers, BadInputIsAClearError) {
     sizes.upper.resize(3);
     expect_error<cdyn::InputError>(sizes, name, "entries");
   }
+  {  // a solver called again with the matrix it refused refuses it again (its checks are once per S)
+    BoundQP indefinite = good;
+    for (int i = 0; i < indefinite.size(); ++i) indefinite.S.coeffRef(i, i) = -1.0;
+    cdyn::PDASSolver pdas;
+    for (int call = 0; call < 2; ++call) EXPECT_THROW(pdas.solve(indefinite), cdyn::NumericalError) << call;
+  }
   EXPECT_THROW(cdyn::make_step_solver("simplex", QPOptions{}), cdyn::InputError);
   QPOptions bad_tol;
   bad_tol.tol = -1;

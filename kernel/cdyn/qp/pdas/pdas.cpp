@@ -31,6 +31,7 @@ ActiveSet initial_active_set(const BoundQP& qp, const QPResult* warm_start) {
   const Eigen::VectorXd& l = qp.lower;
   const Eigen::VectorXd& u = qp.upper;
   ActiveSet state(n, kFree);
+#pragma omp parallel for schedule(static) if (2L * n >= kParallelWork)
   for (int i = 0; i < n; ++i)
     if (l[i] == u[i]) state[i] = kLower;
   if (!warm_start || warm_start->X.size() != n) return state;
@@ -140,6 +141,7 @@ struct PDASSolver::Impl {
   ExplicitReducedSystem explicit_system{opt, counters};
   SaddleReducedSystem saddle_system{counters};
   ReducedSystem* system = nullptr;  // the one of the last problem
+  bool diagonal_checked = false;    // D > 0 was checked for the current matrices
 };
 
 PDASSolver::PDASSolver(const QPOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -187,8 +189,12 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   ReducedSystem& system = *s.system;
   system.prepare(qp, new_matrices);
   const Eigen::VectorXd& D = s.form.diagonal();
-  for (int i = 0; i < n; ++i)
-    if (!(D[i] > 0)) throw NumericalError("pdas: S has a non-positive diagonal entry: it is not positive definite");
+  if (new_matrices) s.diagonal_checked = false;
+  if (!s.diagonal_checked) {  // (once per S: D is the last call's otherwise)
+    for (int i = 0; i < n; ++i)
+      if (!(D[i] > 0)) throw NumericalError("pdas: S has a non-positive diagonal entry: it is not positive definite");
+    s.diagonal_checked = true;
+  }
 
   ActiveSet state = initial_active_set(qp, warm_start);
   if (warm_start && warm_start->X.size() == n) system.set_first_guess(warm_start->X);
