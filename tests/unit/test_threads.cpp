@@ -270,6 +270,46 @@ TEST(Threads, PdasWithAThirdOfTheUnknownsHeldIsTheSameOnOneTwoAndThreeThreads) {
   }
 }
 
+// Resting contact: most unknowns on the obstacle X ≥ 0, a free patch that moves from
+// call to call (warm-started, as a time loop's steps).  The PDAS iterates then take the
+// ways of a mostly held set — CG on the free rows alone, λ on the rows held at two
+// iterates updated over the columns where X moved, by the factor or by CG — and must
+// give the same bits on one, two and three threads.
+TEST(Threads, PdasOnAMostlyHeldSetIsTheSameOnOneTwoAndThreeThreads) {
+  std::mt19937 gen(7);
+  const int m = 151;
+  cdyn::BoundQP qp;
+  qp.S = grid_matrix(m, gen);
+  const int n = static_cast<int>(qp.S.rows());
+  qp.lower = VectorXd::Zero(n);
+  qp.upper = VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+  for (const bool cg_always : {false, true}) {
+    auto solve = [&] {
+      cdyn::QPOptions options;
+      options.tol = 1e-12;
+      options.pdas_cg_always = cg_always;
+      cdyn::PDASSolver pdas(options);
+      std::vector<cdyn::QPResult> results;
+      for (int call = 0; call < 3; ++call) {
+        qp.r = VectorXd::Constant(n, -1.0);  // pressed onto the obstacle but for a 40 × 40 patch
+        const int first = 30 + 4 * call;
+        for (int j = first; j < first + 40; ++j) qp.r.segment(j * m + first, 40).setConstant(1.0);
+        results.push_back(pdas.solve(qp, results.empty() ? nullptr : &results.back()));
+      }
+      return results;
+    };
+    const auto one = on_threads(1, solve), two = on_threads(2, solve), three = on_threads(3, solve);
+    for (int call = 0; call < 3; ++call) {
+      ASSERT_TRUE(one[call].converged);
+      EXPECT_GT(static_cast<int>(one[call].active.size()), n * 9 / 10);  // most held
+      for (const auto* other : {&two, &three}) {
+        EXPECT_TRUE(same_bits(one[call].X, (*other)[call].X)) << cg_always << " " << call;
+        EXPECT_TRUE(same_bits(one[call].reaction, (*other)[call].reaction)) << cg_always << " " << call;
+      }
+    }
+  }
+}
+
 // The seed's membrane at n = 80 (6 241 unknowns after condensation), 300 steps of
 // dt = 0.001 through the impact at t ≈ 0.258: steps solved by the factor and by CG, the
 // full-step reconstruction (midpoint), the mass model's products.  Every step's
