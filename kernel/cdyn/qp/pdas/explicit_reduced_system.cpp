@@ -272,7 +272,7 @@ void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
 
 // Solves S̃ y = b: by CG when the factor is not that of the held set (stopping at the
 // Jacobi-scaled residual cg_tol, masked_cg.hpp), else by the factor (to round-off).
-Eigen::VectorXd ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, double cg_tol) {
+const Eigen::VectorXd& ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, double cg_tol) {
   ++counters_.solves;
   last_cg_residual_ = 0.0;
   const bool resume = resume_cg_ && last_by_cg_;
@@ -317,8 +317,11 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
   // reads fewer columns — the gather when most unknowns are held (resting contact:
   // about 99 %, where the scatter over S's held columns was a quarter of pdas's own
   // time at n = 640).
-  Eigen::VectorXd b = qp.r;
+  // (b̃ starts as r on I and X_A on A, in one pass; the sums below touch only I)
+  Eigen::VectorXd b(n_);
   const auto n_held = std::count_if(held.begin(), held.end(), [](char h) { return h != 0; });
+#pragma omp parallel for schedule(static) if (2L * n_ >= kParallelWork)
+  for (int i = 0; i < n_; ++i) b[i] = held[i] ? value[i] : qp.r[i];
   const int* outer = S_.outerIndexPtr();
   const int* inner = S_.innerIndexPtr();
   const double* s = S_.valuePtr();
@@ -343,13 +346,14 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
       for (int j = first; j < last; ++j) {
         if (!held[j]) continue;
         for (int k = outer[j]; k < outer[j + 1]; ++k)
-          if (inner[k] >= lo && inner[k] < hi) b[inner[k]] -= s[k] * value[j];
+          if (inner[k] >= lo && inner[k] < hi && !held[inner[k]]) b[inner[k]] -= s[k] * value[j];
       }
     }
   }
-  copy_held_values(held, value, b);
-  Eigen::VectorXd X = solve_tilde(b, tol);
-  copy_held_values(held, value, X);
+  const Eigen::VectorXd& y = solve_tilde(b, tol);
+  Eigen::VectorXd X(n_);  // y with X_A = value_A exactly
+#pragma omp parallel for schedule(static) if (2L * n_ >= kParallelWork)
+  for (int i = 0; i < n_; ++i) X[i] = held[i] ? value[i] : y[i];
   return X;
 }
 

@@ -91,7 +91,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool cg_pays(const HeldSet& held) const;
   double cg_iteration_flops() const;
   void track_run(const HeldSet& held);
-  Eigen::VectorXd solve_tilde(const Eigen::VectorXd& b, double cg_tol);
+  const Eigen::VectorXd& solve_tilde(const Eigen::VectorXd& b, double cg_tol);  // into y_last_
 
   const QPOptions& opt_;
   PDASCounters& counters_;
