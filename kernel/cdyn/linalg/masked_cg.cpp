@@ -12,23 +12,9 @@ namespace cdyn {
 
 namespace {
 
-// q_i = (S p)_i on the free rows (0 on the held ones).  S is symmetric, so row i is
-// column i of the column-major storage: a gather, shared among the threads by rows.
-void product(const SparseMatrix& S, const std::vector<char>& held, const double* p, double* q) {
-  const int n = static_cast<int>(held.size());
-  const int* outer = S.outerIndexPtr();
-  const int* inner = S.innerIndexPtr();
-  const double* v = S.valuePtr();
-#pragma omp parallel for schedule(static) if (S.nonZeros() >= kParallelWork)
-  for (int i = 0; i < n; ++i) {
-    double sum = 0.0;
-    if (!held[i])
-      for (int k = outer[i]; k < outer[i + 1]; ++k) sum += v[k] * p[inner[k]];
-    q[i] = sum;
-  }
-}
-
-// The same on the listed free rows alone (q's held rows are not written).
+// q_i = (S p)_i on the listed free rows (q's held rows are not written).  S is
+// symmetric, so row i is column i of the column-major storage: a gather, shared among
+// the threads by rows.
 void product(const SparseMatrix& S, const std::vector<int>& free, const double* p, double* q) {
   const int m = static_cast<int>(free.size());
   const int* outer = S.outerIndexPtr();
@@ -151,7 +137,7 @@ double MaskedCG::set_up_on_all_rows(const std::vector<char>& held, const Eigen::
     if (held[i]) y[i] = b[i];
     p_[i] = held[i] ? 0.0 : y[i];
   }
-  product(S_, held, p_.data(), q_.data());
+  product(S_, free_, p_.data(), q_.data());  // (q's held rows, not written, are not read)
 #pragma omp parallel for schedule(static) if (threaded)
   for (int i = 0; i < n; ++i) {
     r_[i] = held[i] ? 0.0 : b[i] - q_[i];
