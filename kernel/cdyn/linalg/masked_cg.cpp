@@ -155,8 +155,9 @@ double MaskedCG::set_up_on_all_rows(const std::vector<char>& held, const Eigen::
 // The same on the free rows I alone, when most rows are held: the work vectors vanish
 // on A, which the sweeps read and never write, so only the rows the last solve on free
 // rows wrote are cleared, and the set-up costs O(|I|) besides y_A = b_A.  (Over all
-// rows, the set-up and the final residual were 25 passes over the vectors — a solve of
-// two iterations on the resting membrane at n = 640 cost 8 ms, its iterations 0.2.)
+// rows, the set-up and the final residual were 25 passes over the vectors: with 0.6 %
+// of a 640 × 640 grid's rows free, a solve of two iterations took 4.4 ms, 1.2 on the
+// free rows alone.)
 double MaskedCG::set_up_on_free_rows(const std::vector<char>& held, const Eigen::VectorXd& b, Eigen::VectorXd& y,
                                      double tol) {
   const int n = sgs_.size();
