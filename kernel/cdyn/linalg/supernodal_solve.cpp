@@ -127,19 +127,44 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactor& L, int threads) : threa
   }
   for (int j = 0; j < ns; ++j)
     if (size[j] != j - first[j] + 1) return;  // a subtree not contiguous: one sweep
-  // Split the largest subtree into its children (its root joins R) until every subtree
-  // is at most a quarter of a thread's share, then deal them out largest first to the
-  // least loaded thread.
+  // Split the largest subtree into its children (its root joins R), again and again, and
+  // keep the cut whose sweep is estimated fastest: R's work, one thread's, plus the most
+  // loaded thread's, the subtrees dealt out largest first to the least loaded thread.
+  // Splitting lowers the largest load (better balance) and raises R's work; a 2D mesh's
+  // top separators are small, so the best cut leaves few of them in R.
   using Item = std::pair<double, int>;
-  std::priority_queue<Item> open;
-  for (int j = 0; j < ns; ++j)
-    if (parent[j] < 0) open.push({subtree[j], j});
-  const double grain = total / (4.0 * threads);
-  while (!open.empty() && open.top().first > grain) {
+  const auto roots = [&] {
+    std::priority_queue<Item> open;
+    for (int j = 0; j < ns; ++j)
+      if (parent[j] < 0) open.push({subtree[j], j});
+    return open;
+  };
+  const auto split = [&](std::priority_queue<Item>& open) {
     const int j = open.top().second;
     open.pop();
     for (int c : children[j]) open.push({subtree[c], c});
+    return work[j];
+  };
+  const auto makespan = [&](std::priority_queue<Item> open) {  // (a copy: popped largest first)
+    std::vector<double> load(threads, 0.0);
+    for (; !open.empty(); open.pop()) *std::min_element(load.begin(), load.end()) += open.top().first;
+    return *std::max_element(load.begin(), load.end());
+  };
+  int best_splits = 0;
+  {
+    std::priority_queue<Item> open = roots();
+    double in_r = 0.0, best = makespan(open);
+    // (past a grain of 1/16 of a thread's share, or 64 subtrees a thread, more splits
+    // cannot balance much better and only feed R)
+    const double grain = total / (16.0 * threads);
+    for (int splits = 1; !open.empty() && open.top().first > grain && open.size() < 64u * threads; ++splits) {
+      in_r += split(open);
+      const double t = in_r + makespan(open);
+      if (t < best) best = t, best_splits = splits;
+    }
   }
+  std::priority_queue<Item> open = roots();
+  for (int k = 0; k < best_splits; ++k) split(open);
   std::vector<Item> trees;
   for (; !open.empty(); open.pop()) trees.push_back(open.top());  // largest first
   std::vector<double> load(threads, 0.0);
@@ -173,6 +198,7 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactor& L, int threads) : threa
   }
   for (auto& g : groups_) std::sort(g.begin(), g.end(), [](Range a, Range b) { return a.first < b.first; });
   serial_fraction_ = 1.0 - in_trees / total;
+  span_fraction_ = serial_fraction_ + *std::max_element(load.begin(), load.end()) / total;
 }
 
 void SupernodalSolve::solve(const SupernodalFactor& L, double* x) const {

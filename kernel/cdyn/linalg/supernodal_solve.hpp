@@ -59,6 +59,9 @@ class SupernodalSolve {
   int threads() const { return threads_; }  // as cut for (the groups may be fewer)
   // The fraction of L's entries swept by one thread (R's): what bounds the speed-up.
   double serial_fraction() const { return serial_fraction_; }
+  // R's fraction plus the most loaded thread's: the sweep's estimated time against one
+  // thread's, so 1 / span_fraction() is the speed-up the cut allows.
+  double span_fraction() const { return span_fraction_; }
 
  private:
   struct Range {
@@ -73,6 +76,7 @@ class SupernodalSolve {
   int threads_ = 1;
   int max_rows_ = 0;            // the tallest supernode (workspace)
   double serial_fraction_ = 1.0;
+  double span_fraction_ = 1.0;
 };
 
 }  // namespace cdyn
