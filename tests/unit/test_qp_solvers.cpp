@@ -553,6 +553,45 @@ TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
   EXPECT_GT(pdas.counters().cg_solves, 12);
 }
 
+TEST(QPSolvers, PdasGoesBackToTheFactorOfSWhenNothingIsHeld) {
+  // The body lifts off: after calls with a held zone, brought into the factor, the load
+  // turns and nothing is held.  The step is then the unconstrained one, S X = r, and S's
+  // own factor (made by the first call, kept aside when the factor left it) solves it:
+  // no factorization, no row update, no CG — one solve, and the answer of a fresh
+  // solver's factor of S to round-off.  (Before, the chattering membrane at n = 160,
+  // P1/P1 backward Euler, ran 80 steps with nothing held at 2 PDAS iterations of CG
+  // each: 4.4 ms a step against the linear step's 2.3.)
+  const int m = 30, n = m * m;
+  BoundQP qp;
+  qp.S = grid_stencil(m, 24.0);
+  qp.lower = VectorXd::Zero(n);
+  qp.upper = VectorXd::Constant(n, inf);
+  qp.r.setConstant(n, 1.0);
+  cdyn::PDASSolver pdas;
+  QPResult r = pdas.solve(qp);  // nothing held: the factor of S
+  qp.r.segment(5 * m, 10 * m).setConstant(-1.0);
+  for (int call = 0; call < 4; ++call) r = pdas.solve(qp, &r);
+  ASSERT_GT(r.active.size(), 0u);
+  const auto before = pdas.counters();
+  ASSERT_GT(before.factorizations + before.row_updates, 1);  // the factor left S's
+  qp.r.setConstant(n, 1.0);  // lift-off
+  r = pdas.solve(qp, &r);
+  expect_kkt(qp, r, QPOptions{}.tol, "lift-off");
+  EXPECT_TRUE(r.active.empty());
+  const auto after = pdas.counters();
+  EXPECT_EQ(after.factorizations, before.factorizations);
+  EXPECT_EQ(after.row_updates, before.row_updates);
+  EXPECT_EQ(after.cg_solves, before.cg_solves);
+  // (the first iterate holds the last call's set, by the factor as it is; the second none)
+  EXPECT_EQ(after.solves, before.solves + 2);
+  r = pdas.solve(qp, &r);  // and the next call with nothing held is one solve
+  EXPECT_EQ(pdas.counters().solves, after.solves + 1);
+  EXPECT_EQ(pdas.counters().factorizations + pdas.counters().row_updates, after.factorizations + after.row_updates);
+  cdyn::PDASSolver fresh;
+  const QPResult reference = fresh.solve(qp);
+  EXPECT_LT((r.X - reference.X).lpNorm<Eigen::Infinity>(), 1e-14 * reference.X.lpNorm<Eigen::Infinity>());
+}
+
 TEST(QPSolvers, PdasPricesANewSetWithFewFreeUnknownsAsAFreeBlockFactorization) {
   // Resting contact: most unknowns held, the free ones in a patch that moves.  The factor
   // is S's (the first call has no bounds); S's whole factorization on this 60 × 60 grid

@@ -1,6 +1,7 @@
 // test_sparse_cholesky.cpp — linalg/sparse_cholesky.hpp: the analysis with a given
 // fill-reducing order, which the active-set solver uses for the free block S_II of
-// resting contact (the order of I induced by S's own analysis).
+// resting contact (the order of I induced by S's own analysis), and a factor kept aside
+// and taken back (the active-set solver's return to S's own factor).
 //
 // Any symmetric permutation P gives the factorization P S Pᵀ = L Lᵀ of the same S, so
 // the solution of S x = b must not depend on the order beyond round-off: asserted to
@@ -76,6 +77,36 @@ TEST(SparseCholesky, ASolveWithoutAFactorIsRefused) {
   EXPECT_GE(chol.factorize(indefinite), 0);
   EXPECT_FALSE(chol.factorized());
   EXPECT_THROW(chol.solve(VectorXd::Ones(16)), cdyn::InputError);
+}
+
+// A kept factor is a copy: row updates and a factorization of another matrix leave it as
+// it was, and taking it back gives the solves of the original factor, bit for bit.
+TEST(SparseCholesky, AKeptFactorComesBackAsItWas) {
+  const int k = 20, n = k * k;
+  const SparseMatrix S = shifted_laplacian(k);
+  const VectorXd b = VectorXd::LinSpaced(n, -1.0, 3.0).array().sin();
+  cdyn::SparseCholesky chol;
+  chol.analyze(S);
+  ASSERT_LT(chol.factorize(S), 0);
+  const VectorXd x = chol.solve(b);
+  EXPECT_FALSE(chol.has_kept());
+  chol.keep();
+  EXPECT_TRUE(chol.has_kept());
+  for (int i = 0; i < n; i += 7) chol.replace_by_identity(i);
+  EXPECT_GT((chol.solve(b) - x).norm(), 1e-3 * x.norm());  // the factor did change
+  chol.use_kept();
+  VectorXd again = chol.solve(b);
+  EXPECT_EQ(again, x);
+  ASSERT_LT(chol.factorize(SparseMatrix(2.0 * S)), 0);
+  chol.use_kept();  // (and the copy can be taken again)
+  again = chol.solve(b);
+  EXPECT_EQ(again, x);
+  chol.forget_kept();
+  EXPECT_FALSE(chol.has_kept());
+  EXPECT_THROW(chol.use_kept(), cdyn::InputError);
+  chol.keep();
+  chol.analyze(S);  // a new analysis drops it
+  EXPECT_FALSE(chol.has_kept());
 }
 
 }  // namespace

@@ -19,6 +19,7 @@ struct SparseCholesky::Impl {
   cholmod_common common;
   cholmod_factor* symbolic = nullptr;  // the analysis, kept to start each factorization from
   cholmod_factor* L = nullptr;         // the current numeric factor
+  cholmod_factor* kept = nullptr;      // a copy of an earlier one (keep(), use_kept())
   std::vector<int> outer, inner;       // pattern of the analysed matrix
   std::vector<int> position;           // position[i] = row of L holding original unknown i
   double flops = 0.0;                  // of a numeric factorization (the analysis's count)
@@ -43,6 +44,7 @@ struct SparseCholesky::Impl {
   }
   ~Impl() {
     free_factor(L);
+    free_factor(kept);
     free_factor(symbolic);
     cholmod_free_dense(&X, &common);
     cholmod_free_dense(&Y, &common);
@@ -104,6 +106,7 @@ void SparseCholesky::analyze_with(const SparseMatrix& S, const std::vector<int>*
   if (!S.isCompressed()) throw InputError("SparseCholesky: the matrix must be compressed");
   Impl& m = *impl_;
   m.free_factor(m.L);
+  m.free_factor(m.kept);
   m.free_factor(m.symbolic);
   m.sweeps.reset();
   m.sweeps_suit = -1;
@@ -202,6 +205,26 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   m.check("solve");
   return Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(m.X->x), b.size());
 }
+
+void SparseCholesky::keep() {
+  Impl& m = *impl_;
+  if (!m.L) throw InputError("SparseCholesky: keep() without a factor");
+  m.free_factor(m.kept);
+  m.kept = cholmod_copy_factor(m.L, &m.common);
+  m.check("copy_factor");
+}
+
+bool SparseCholesky::has_kept() const { return impl_->kept != nullptr; }
+
+void SparseCholesky::use_kept() {
+  Impl& m = *impl_;
+  if (!m.kept) throw InputError("SparseCholesky: use_kept() without a kept factor");
+  m.free_factor(m.L);
+  m.L = cholmod_copy_factor(m.kept, &m.common);
+  m.check("copy_factor");
+}
+
+void SparseCholesky::forget_kept() { impl_->free_factor(impl_->kept); }
 
 void SparseCholesky::replace_by_identity(int i) {
   Impl& m = *impl_;

@@ -47,6 +47,14 @@ class SparseCholesky {
   // Row and column i, identity before, become column i of S restricted to the rows with
   // keep[row] != 0 (keep[i] != 0).  Returns false if the result is not positive definite.
   bool restore(int i, const SparseMatrix& S, const std::vector<char>& keep);
+  // A copy of the current factor kept aside, and the factor made a copy of it again
+  // later: an active-set method returns to S's own factor when the last constraint is
+  // released, for the price of a copy instead of a factorization.  Row updates and
+  // factorizations leave the kept copy as it is; an analysis or forget_kept() drops it.
+  void keep();
+  bool has_kept() const;
+  void use_kept();
+  void forget_kept();
   // Floating-point operations of the last replace_by_identity() or restore(), as CHOLMOD
   // counts them (cholmod_common::modfl): what an active-set method weighs against a CG solve.
   double modification_flops() const;

@@ -75,6 +75,8 @@ class ExplicitReducedSystem : public ReducedSystem {
 
  private:
   void refactorize(const HeldSet& held);
+  void take_whole_factor();
+  void leave_whole_factor();
   // Whether a refactorization for a set leaving n_free unknowns free factorizes the free
   // block alone (QPOptions::pdas_free_block): what refactorize does and sync_cost prices.
   bool factorizes_free_block(long n_free) const { return n_free <= opt_.pdas_free_block * n_; }
@@ -104,6 +106,10 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool block_mode_ = false;               // the factor is block_'s, not chol_'s
   FreeBlockFactor block_;
   int updates_since_factorization_ = 0;
+  // S's own factor (no unknown held): chol_'s now, or kept aside by chol_ (keep()) since
+  // chol_ was first refactorized or updated for a held set, so that the empty held set
+  // (the body lifted off) costs a copy of it and not a factorization.
+  bool whole_in_chol_ = false;
   // CG on S̃ for a held set other than the factor's (QPOptions::pdas_cg_iterations)
   bool cg_mode_ = false;                  // solve_tilde uses CG with cg_held_
   bool cg_failed_ = false;                // CG did not converge once for this S: not tried again
