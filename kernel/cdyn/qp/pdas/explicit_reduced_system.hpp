@@ -29,6 +29,9 @@
 //     QPOptions::pdas_free_block of the unknowns free factorizes S̃ on I⁺ = I ∪ M only,
 //     M the held neighbours of I, whose unknowns that switch within I⁺ are row updates
 //     on it (qp/pdas/free_block_factor.hpp).
+//   - S's own factor (nothing held) is kept aside when the factor first leaves it, and
+//     taken back, a copy, when nothing is held again (a body lifted off): the steps are
+//     then the linear step's one solve, where CG pairs and a refactorization would be.
 // A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
 // stops at the first non-positive pivot: NumericalError naming the unknown) and is the
 // unconstrained solve of a cold start.
