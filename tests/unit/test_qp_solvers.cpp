@@ -592,6 +592,36 @@ TEST(QPSolvers, PdasGoesBackToTheFactorOfSWhenNothingIsHeld) {
   EXPECT_LT((r.X - reference.X).lpNorm<Eigen::Infinity>(), 1e-14 * reference.X.lpNorm<Eigen::Infinity>());
 }
 
+TEST(QPSolvers, PdasPricesALiftOffFromAFreeBlockAsTheWholeFactorization) {
+  // A body resting on the obstacle (its factor a free block's: most unknowns held) lifts
+  // off but for a strip.  Bringing the factor to that set is a factorization of the
+  // whole S̃, which costs more than CG here (100 × 100 grid): the set goes to CG.  Priced
+  // as the free block's own factorization (a patch of 100 unknowns), it was synced: the
+  // chattering membrane made two factorizations of S̃ at its lift-off (n = 160, P1+/P0
+  // midpoint: 16.7, 16.2 ms a step over 100 steps with them, 14.8, 14.5 without).
+  const int m = 100, n = m * m;
+  BoundQP qp;
+  qp.S = grid_stencil(m, 8.0);
+  qp.lower = VectorXd::Zero(n);
+  qp.upper = VectorXd::Constant(n, inf);
+  qp.r = VectorXd::Constant(n, 1.0);
+  cdyn::PDASSolver pdas;
+  QPResult r = pdas.solve(qp);  // nothing held: S's factor
+  qp.r.setConstant(-1.0);       // resting: pressed everywhere but a 10 × 10 patch
+  for (int i = 40; i < 50; ++i) qp.r.segment(i * m + 40, 10).setConstant(1.0);
+  for (int call = 0; call < 2; ++call) r = pdas.solve(qp, &r);
+  ASSERT_GT(r.active.size(), static_cast<std::size_t>(n / 2));
+  qp.r.setConstant(1.0);  // lift-off but for a strip of two grid lines
+  qp.r.segment(10 * m, 2 * m).setConstant(-1.0);
+  const auto before = pdas.counters();
+  r = pdas.solve(qp, &r);
+  expect_kkt(qp, r, QPOptions{}.tol, "lift-off");
+  ASSERT_GT(r.active.size(), 0u);
+  ASSERT_LT(r.active.size(), static_cast<std::size_t>(n / 10));
+  EXPECT_EQ(pdas.counters().factorizations, before.factorizations);
+  EXPECT_GT(pdas.counters().cg_solves, before.cg_solves);
+}
+
 TEST(QPSolvers, PdasPricesANewSetWithFewFreeUnknownsAsAFreeBlockFactorization) {
   // Resting contact: most unknowns held, the free ones in a patch that moves.  The factor
   // is S's (the first call has no bounds); S's whole factorization on this 60 × 60 grid
