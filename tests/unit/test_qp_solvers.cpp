@@ -560,7 +560,7 @@ TEST(QPSolvers, PdasGoesBackToTheFactorOfSWhenNothingIsHeld) {
   // no factorization, no row update, no CG — one solve, and the answer of a fresh
   // solver's factor of S to round-off.  (Before, the chattering membrane at n = 160,
   // P1/P1 backward Euler, ran 80 steps with nothing held at 2 PDAS iterations of CG
-  // each: 4.4 ms a step against the linear step's 2.3.)
+  // each: 4.6–5.0 ms a step against the linear run's 2.1–2.6.)
   const int m = 30, n = m * m;
   BoundQP qp;
   qp.S = grid_stencil(m, 24.0);
