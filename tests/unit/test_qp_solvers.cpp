@@ -516,6 +516,15 @@ SparseMatrix grid_stencil(int m, double diagonal) {
   return S;
 }
 
+// The obstacle X ≥ 0 on grid_stencil(m, diagonal), no load yet.
+BoundQP grid_obstacle(int m, double diagonal) {
+  BoundQP qp;
+  qp.S = grid_stencil(m, diagonal);
+  qp.lower = VectorXd::Zero(m * m);
+  qp.upper = VectorXd::Constant(m * m, inf);
+  return qp;
+}
+
 TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
   // A well-conditioned 2D step matrix (the 5-point Laplacian plus 20 I on a 30 × 30
   // grid: CG converges in a few iterations, a refactorization costs tens of them) and a
@@ -527,10 +536,7 @@ TEST(QPSolvers, PdasLeavesTheFactorWhereAChatteringSetWouldNotRepayASync) {
   // call by CG.  (With a resync at every settled set — the rule before — each cycle
   // changes the factor: a chattering membrane spent 3.7 ms a step on it.)
   const int m = 30, n = m * m;
-  BoundQP qp;
-  qp.S = grid_stencil(m, 24.0);
-  qp.lower = VectorXd::Zero(n);
-  qp.upper = VectorXd::Constant(n, inf);
+  BoundQP qp = grid_obstacle(m, 24.0);
   auto press = [&](int first_row, int last_row) {  // X < 0 on those rows without the bound
     qp.r.setConstant(n, 1.0);
     qp.r.segment(first_row * m, (last_row - first_row) * m).setConstant(-1.0);
@@ -562,10 +568,7 @@ TEST(QPSolvers, PdasGoesBackToTheFactorOfSWhenNothingIsHeld) {
   // P1/P1 backward Euler, ran 80 steps with nothing held at 2 PDAS iterations of CG
   // each: 4.6–5.0 ms a step against the linear run's 2.1–2.6.)
   const int m = 30, n = m * m;
-  BoundQP qp;
-  qp.S = grid_stencil(m, 24.0);
-  qp.lower = VectorXd::Zero(n);
-  qp.upper = VectorXd::Constant(n, inf);
+  BoundQP qp = grid_obstacle(m, 24.0);
   qp.r.setConstant(n, 1.0);
   cdyn::PDASSolver pdas;
   QPResult r = pdas.solve(qp);  // nothing held: the factor of S
@@ -600,10 +603,7 @@ TEST(QPSolvers, PdasPricesALiftOffFromAFreeBlockAsTheWholeFactorization) {
   // chattering membrane made two factorizations of S̃ at its lift-off (n = 160, P1+/P0
   // midpoint: 16.7, 16.2 ms a step over 100 steps with them, 14.8, 14.5 without).
   const int m = 100, n = m * m;
-  BoundQP qp;
-  qp.S = grid_stencil(m, 8.0);
-  qp.lower = VectorXd::Zero(n);
-  qp.upper = VectorXd::Constant(n, inf);
+  BoundQP qp = grid_obstacle(m, 8.0);
   qp.r = VectorXd::Constant(n, 1.0);
   cdyn::PDASSolver pdas;
   QPResult r = pdas.solve(qp);  // nothing held: S's factor

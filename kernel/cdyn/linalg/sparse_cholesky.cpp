@@ -55,6 +55,11 @@ struct SparseCholesky::Impl {
     if (F) cholmod_free_factor(&F, &common);
     F = nullptr;
   }
+  void copy_factor(const cholmod_factor* from, cholmod_factor*& to) {
+    free_factor(to);
+    to = cholmod_copy_factor(const_cast<cholmod_factor*>(from), &common);
+    check("copy_factor");
+  }
   // A view of S, lower triangle used (stype = −1); the arrays are Eigen's.
   static cholmod_sparse view(const SparseMatrix& S) {
     cholmod_sparse A;
@@ -209,9 +214,7 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
 void SparseCholesky::keep() {
   Impl& m = *impl_;
   if (!m.L) throw InputError("SparseCholesky: keep() without a factor");
-  m.free_factor(m.kept);
-  m.kept = cholmod_copy_factor(m.L, &m.common);
-  m.check("copy_factor");
+  m.copy_factor(m.L, m.kept);
 }
 
 bool SparseCholesky::has_kept() const { return impl_->kept != nullptr; }
@@ -219,9 +222,7 @@ bool SparseCholesky::has_kept() const { return impl_->kept != nullptr; }
 void SparseCholesky::use_kept() {
   Impl& m = *impl_;
   if (!m.kept) throw InputError("SparseCholesky: use_kept() without a kept factor");
-  m.free_factor(m.L);
-  m.L = cholmod_copy_factor(m.kept, &m.common);
-  m.check("copy_factor");
+  m.copy_factor(m.kept, m.L);
 }
 
 void SparseCholesky::forget_kept() { impl_->free_factor(impl_->kept); }
