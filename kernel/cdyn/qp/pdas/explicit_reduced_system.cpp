@@ -216,21 +216,20 @@ ExplicitReducedSystem::Sync ExplicitReducedSystem::sync_cost(const HeldSet& held
     changes += held[i] != factor_held_[i];
     n_free += !held[i];
   }
-  // From a free block to a set that leaves more than pdas_free_block of the unknowns
-  // free (the resting body lifts off): refactorize makes S̃'s whole factor, priced below.
-  // (Priced as the block's own, a few hundred unknowns, such a jump was always synced:
-  // the chattering membrane's lift-off made two factorizations of S̃ where CG was
-  // cheaper; without them its P1+/P0 step 16.7, 16.2 → 14.8, 14.5 ms over 100 steps,
-  // n = 160, alternated runs.)
-  if (block_mode_ && factorizes_free_block(n_free))  // (before any row update on a block is measured, priced as a new block)
+  const bool block = factorizes_free_block(n_free);
+  if (block_mode_ && block)  // (before any row update on a block is measured, priced as a new block)
     return {block_.updates_measured() && block_.updates_pay(factor_held_, held, update_limit())
                 ? changes * block_.update_flops()
                 : block_.factorization_flops(),
             block_.solve_flops()};
-  if (block_mode_) return {chol_.factorization_flops(), chol_.solve_flops()};
-  if (!priced_as_refactorization(changes)) return {changes * (update_flops_ / updates_measured_), chol_.solve_flops()};
+  // From a free block, a set that leaves more unknowns free (the resting body lifts off)
+  // is never row updates of S̃'s factor but its refactorization, priced below.  (Priced
+  // as the block's own, a few hundred unknowns, such a jump was always synced: the
+  // chattering membrane's lift-off made two factorizations of S̃ where CG was cheaper;
+  // without them its P1+/P0 step 16.7, 16.2 → 14.8, 14.5 ms over 100 steps, n = 160.)
+  if (!block_mode_ && !priced_as_refactorization(changes))
+    return {changes * (update_flops_ / updates_measured_), chol_.solve_flops()};
   const double f = double(n_free) / n_;
-  const bool block = factorizes_free_block(n_free);
   return {chol_.factorization_flops() * (block ? std::pow(f, 1.5) : 1.0), chol_.solve_flops() * (block ? f : 1.0)};
 }
 
