@@ -75,11 +75,8 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   chol_.forget_kept();
   factorize_counted(chol_, S_, "S is not positive definite (CHOLMOD: the factorization breaks down", counters_);
   whole_in_chol_ = true;
-  factor_held_.assign(n_, 0);
-  block_mode_ = false;
-  updates_since_factorization_ = 0;
-  cg_mode_ = cg_failed_ = false;
-  cg_since_sync_ = 0;
+  take_whole_factor();
+  cg_failed_ = false;
   cg_.reset();
   if (opt_.pdas_cg_iterations > 0) cg_.emplace(S_);  // (references the member S_)
 }
@@ -94,6 +91,11 @@ void ExplicitReducedSystem::refactorize(const HeldSet& held) {
     replace_held_by_identity(S_, held, S_tilde_);
     factorize_counted(chol_, S_tilde_, "the reduced matrix S_II is not positive definite (breakdown", counters_);
   }
+  factor_made_for(held);
+}
+
+// The factor is a fresh one of `held`: no row update on it, and no CG since (CG mode off).
+void ExplicitReducedSystem::factor_made_for(const HeldSet& held) {
   factor_held_ = held;
   updates_since_factorization_ = 0;
   cg_mode_ = false;
@@ -116,10 +118,7 @@ void ExplicitReducedSystem::take_whole_factor() {
     whole_in_chol_ = true;
   }
   block_mode_ = false;
-  factor_held_.assign(n_, 0);
-  updates_since_factorization_ = 0;
-  cg_mode_ = false;
-  cg_since_sync_ = 0;
+  factor_made_for(HeldSet(n_, 0));
 }
 
 // Brings the factor to `held` (row updates or a refactorization), leaving CG mode.

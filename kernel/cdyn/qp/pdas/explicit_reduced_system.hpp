@@ -78,6 +78,7 @@ class ExplicitReducedSystem : public ReducedSystem {
 
  private:
   void refactorize(const HeldSet& held);
+  void factor_made_for(const HeldSet& held);
   void take_whole_factor();
   void leave_whole_factor();
   // Whether a refactorization for a set leaving n_free unknowns free factorizes the free
