@@ -167,10 +167,6 @@ void resuming_is_the_uninterrupted_iteration(bool mostly_held) {
 TEST(MaskedCG, ResumingIsTheUninterruptedIteration) { resuming_is_the_uninterrupted_iteration(false); }
 TEST(MaskedCG, ResumingOnTheFreeRowsIsTheUninterruptedIteration) { resuming_is_the_uninterrupted_iteration(true); }
 
-}  // namespace
-
-namespace {
-
 // One iteration object serves the PDAS iterates of a whole time loop, each with its held
 // set.  On the free rows alone it clears only the rows its last such solve wrote: a solve
 // must then give the bits of a fresh object's, whatever sets came before (here two with
