@@ -1,7 +1,8 @@
 // test_sparse_cholesky.cpp — linalg/sparse_cholesky.hpp: the analysis with a given
 // fill-reducing order, which the active-set solver uses for the free block S_II of
-// resting contact (the order of I induced by S's own analysis), and a factor kept aside
-// and taken back (the active-set solver's return to S's own factor).
+// resting contact (the order of I induced by S's own analysis), a factor kept aside
+// and taken back (the active-set solver's return to S's own factor), and the halves of a
+// solve with a unit vector's path (the capacitance solve's parts).
 //
 // Any symmetric permutation P gives the factorization P S Pᵀ = L Lᵀ of the same S, so
 // the solution of S x = b must not depend on the order beyond round-off: asserted to
@@ -107,6 +108,48 @@ TEST(SparseCholesky, AKeptFactorComesBackAsItWas) {
   chol.keep();
   chol.analyze(S);  // a new analysis drops it
   EXPECT_FALSE(chol.has_kept());
+}
+
+// The two halves of a solve, and the forward half of a unit vector on its path alone:
+// on a factor CHOLMOD makes supernodal (a 120 × 120 grid: our sweeps) and on one it
+// leaves simplicial (a 6 × 6 grid: its columns walked one by one).
+TEST(SparseCholesky, TheHalvesOfASolveAndAUnitVectorsPath) {
+  for (const int k : {120, 6}) {
+    const int n = k * k;
+    const SparseMatrix S = shifted_laplacian(k);
+    cdyn::SparseCholesky chol;
+    chol.analyze(S);
+    ASSERT_LT(chol.factorize(S), 0);
+    ASSERT_TRUE(chol.has_halves());
+    const VectorXd b = VectorXd::LinSpaced(n, -1.0, 3.0).array().sin();
+    VectorXd v = b;
+    chol.forward(v);
+    chol.backward(v);
+    const VectorXd x = chol.solve(b);
+    EXPECT_LE((v - x).lpNorm<Eigen::Infinity>(), 1e-15 * x.lpNorm<Eigen::Infinity>()) << k;
+    for (const int i : {0, n / 3, n - 1}) {
+      std::vector<int> rows;
+      std::vector<double> values;
+      const double flops = chol.unit_forward(i, rows, values);
+      VectorXd z = VectorXd::Unit(n, i);
+      chol.forward(z);  // the whole sweep
+      ASSERT_EQ(rows.size(), values.size());
+      EXPECT_GT(flops, 0.0);
+      EXPECT_TRUE(std::is_sorted(rows.begin(), rows.end()));
+      VectorXd on_path = VectorXd::Zero(n);
+      for (std::size_t p = 0; p < rows.size(); ++p) on_path[rows[p]] = values[p];
+      // (the same operations on the path's entries; the others are exact zeros)
+      EXPECT_LE((on_path - z).lpNorm<Eigen::Infinity>(), 1e-15 * z.lpNorm<Eigen::Infinity>()) << k << " " << i;
+      if (k == 120) EXPECT_LT(rows.size(), static_cast<std::size_t>(n / 10));  // a path, not the whole
+    }
+  }
+  cdyn::SparseCholesky chol;
+  chol.analyze(shifted_laplacian(20));
+  VectorXd v = VectorXd::Ones(400);
+  EXPECT_THROW(chol.forward(v), cdyn::InputError);  // no factor yet
+  ASSERT_LT(chol.factorize(shifted_laplacian(20)), 0);
+  chol.replace_by_identity(3);  // (CHOLMOD makes it LDLᵀ)
+  EXPECT_FALSE(chol.has_halves());
 }
 
 }  // namespace

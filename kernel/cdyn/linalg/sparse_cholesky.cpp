@@ -31,6 +31,8 @@ struct SparseCholesky::Impl {
   // thread count of the last solve; reset by each analysis.
   mutable std::unique_ptr<SupernodalSolve> sweeps;
   int sweeps_suit = -1;  // SupernodalSolve::suits the analysed pattern (−1: not asked yet)
+  mutable std::unique_ptr<SupernodalPaths> paths;  // for unit_forward on a supernodal factor
+  mutable std::vector<double> z;                   // unit_forward's on a simplicial one (zero between calls)
   mutable Eigen::VectorXd y;  // the permuted right-hand side
 
   Impl() {
@@ -89,6 +91,29 @@ struct SparseCholesky::Impl {
     s.x = static_cast<const double*>(F.x);
     return s;
   }
+  // Our sweeps by subtrees when L is supernodal LLᵀ with narrow supernodes, cut for the
+  // kernel's thread count; null: CHOLMOD's solve.
+  const SupernodalSolve* subtree_sweeps() {
+    if (!L->is_super || !L->is_ll) return nullptr;
+    if (sweeps_suit < 0) sweeps_suit = SupernodalSolve::suits(supernodal(*L)) ? 1 : 0;
+    if (sweeps_suit == 0) return nullptr;
+    const int threads = thread_count();
+    if (!sweeps || sweeps->threads() != threads) sweeps = std::make_unique<SupernodalSolve>(supernodal(*L), threads);
+    return sweeps.get();
+  }
+  // v ← L⁻¹ v or L⁻ᵀ v (sys: CHOLMOD_L or CHOLMOD_Lt) by CHOLMOD, v in L's order.
+  void cholmod_half(int sys, Eigen::VectorXd& v) {
+    cholmod_dense B;
+    std::memset(&B, 0, sizeof B);
+    B.nrow = B.nzmax = B.d = v.size();
+    B.ncol = 1;
+    B.x = v.data();
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+    cholmod_solve2(sys, L, &B, nullptr, &X, nullptr, &Y, &E, &common);
+    check("solve");
+    v = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X->x), v.size());
+  }
   void check(const char* what) const {
     if (common.status < CHOLMOD_OK)
       throw NumericalError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) + ")");
@@ -115,6 +140,7 @@ void SparseCholesky::analyze_with(const SparseMatrix& S, const std::vector<int>*
   m.free_factor(m.symbolic);
   m.sweeps.reset();
   m.sweeps_suit = -1;
+  m.paths.reset();
   cholmod_sparse A = Impl::view(S);
   if (ordering) {
     const int saved_nmethods = m.common.nmethods, saved_ordering = m.common.method[0].ordering;
@@ -176,14 +202,9 @@ bool SparseCholesky::factorized() const { return impl_->L != nullptr; }
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   Impl& m = *impl_;
   if (!m.L) throw InputError("SparseCholesky: solve() without a factor (factorize() first, or it failed)");
-  if (m.L->is_super && m.L->is_ll && m.sweeps_suit < 0)
-    m.sweeps_suit = SupernodalSolve::suits(Impl::supernodal(*m.L)) ? 1 : 0;
-  if (m.L->is_super && m.L->is_ll && m.sweeps_suit == 1) {
+  if (const SupernodalSolve* sweeps = m.subtree_sweeps()) {
     // Our sweeps by subtrees, on the kernel's threads (CHOLMOD's are one sweep).
     const SupernodalFactor L = Impl::supernodal(*m.L);
-    const int threads = thread_count();
-    if (!m.sweeps || m.sweeps->threads() != threads)
-      m.sweeps = std::make_unique<SupernodalSolve>(L, threads);
     const int* perm = static_cast<const int*>(m.L->Perm);
     const int n = static_cast<int>(b.size());
     m.y.resize(n);
@@ -191,7 +212,7 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
     // (a permutation: every entry written by one thread)
 #pragma omp parallel for schedule(static) if (n >= kParallelWork)
     for (int k = 0; k < n; ++k) y[k] = b[perm[k]];
-    m.sweeps->solve(L, y);
+    sweeps->solve(L, y);
     Eigen::VectorXd x(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelWork)
     for (int k = 0; k < n; ++k) x[perm[k]] = y[k];
@@ -209,6 +230,68 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   cholmod_solve2(CHOLMOD_A, m.L, &B, nullptr, &m.X, nullptr, &m.Y, &m.E, &m.common);
   m.check("solve");
   return Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(m.X->x), b.size());
+}
+
+bool SparseCholesky::has_halves() const { return impl_->L && impl_->L->is_ll; }
+
+void SparseCholesky::forward(Eigen::VectorXd& v) const {
+  Impl& m = *impl_;
+  if (!has_halves()) throw InputError("SparseCholesky: forward() needs an LLᵀ factor");
+  const int* perm = static_cast<const int*>(m.L->Perm);
+  const int n = static_cast<int>(v.size());
+  m.y.resize(n);
+  for (int k = 0; k < n; ++k) m.y[k] = v[perm[k]];
+  v.swap(m.y);
+  if (const SupernodalSolve* sweeps = m.subtree_sweeps())
+    sweeps->forward(Impl::supernodal(*m.L), v.data());
+  else
+    m.cholmod_half(CHOLMOD_L, v);
+}
+
+void SparseCholesky::backward(Eigen::VectorXd& v) const {
+  Impl& m = *impl_;
+  if (!has_halves()) throw InputError("SparseCholesky: backward() needs an LLᵀ factor");
+  if (const SupernodalSolve* sweeps = m.subtree_sweeps())
+    sweeps->backward(Impl::supernodal(*m.L), v.data());
+  else
+    m.cholmod_half(CHOLMOD_Lt, v);
+  const int* perm = static_cast<const int*>(m.L->Perm);
+  const int n = static_cast<int>(v.size());
+  m.y.resize(n);
+  for (int k = 0; k < n; ++k) m.y[perm[k]] = v[k];
+  v.swap(m.y);
+}
+
+double SparseCholesky::unit_forward(int i, std::vector<int>& rows, std::vector<double>& values) const {
+  Impl& m = *impl_;
+  if (!has_halves()) throw InputError("SparseCholesky: unit_forward() needs an LLᵀ factor");
+  const int k = m.position[i];
+  if (m.L->is_super) {
+    if (!m.paths) m.paths = std::make_unique<SupernodalPaths>(Impl::supernodal(*m.L));
+    return m.paths->unit_forward(Impl::supernodal(*m.L), k, rows, values);
+  }
+  // Simplicial: column j's entries at Lp[j] … Lp[j] + Lnz[j] − 1, its diagonal first, its
+  // parent in the tree its first row below (CHOLMOD keeps the rows sorted).
+  const int* Lp = static_cast<const int*>(m.L->p);
+  const int* Li = static_cast<const int*>(m.L->i);
+  const int* Lnz = static_cast<const int*>(m.L->nz);
+  const double* Lx = static_cast<const double*>(m.L->x);
+  m.z.resize(m.L->n, 0.0);
+  rows.clear();
+  values.clear();
+  double flops = 0.0;
+  m.z[k] = 1.0;
+  for (int j = k; j >= 0;) {
+    const int p0 = Lp[j], p1 = Lp[j] + Lnz[j];
+    const double zj = m.z[j] / Lx[p0];
+    for (int p = p0 + 1; p < p1; ++p) m.z[Li[p]] -= Lx[p] * zj;
+    flops += 2.0 * (p1 - p0);
+    rows.push_back(j);
+    values.push_back(zj);
+    m.z[j] = 0.0;
+    j = p1 > p0 + 1 ? Li[p0 + 1] : -1;
+  }
+  return flops;
 }
 
 void SparseCholesky::keep() {

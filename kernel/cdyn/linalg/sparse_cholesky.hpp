@@ -47,6 +47,16 @@ class SparseCholesky {
   // Row and column i, identity before, become column i of S restricted to the rows with
   // keep[row] != 0 (keep[i] != 0).  Returns false if the result is not positive definite.
   bool restore(int i, const SparseMatrix& S, const std::vector<char>& keep);
+  // The two halves of solve() with an LLᵀ factor — the factorized matrix's own, not one
+  // after row updates (CHOLMOD makes those LDLᵀ) — v ← L⁻¹ P v and v ← Pᵀ L⁻ᵀ v, and
+  // the first for a unit vector on its elimination-tree path alone, z = L⁻¹ P e_i (its
+  // entries there: rows of L, increasing, and values; returns the flops): what a solve
+  // with a few rows and columns of the matrix eliminated is made of
+  // (qp/pdas/capacitance_solve.hpp).
+  bool has_halves() const;
+  void forward(Eigen::VectorXd& v) const;
+  void backward(Eigen::VectorXd& v) const;
+  double unit_forward(int i, std::vector<int>& rows, std::vector<double>& values) const;
   // A copy of the current factor kept aside, and the factor made a copy of it again
   // later: an active-set method returns to S's own factor when the last constraint is
   // released, for the price of a copy instead of a factorization.  Row updates and

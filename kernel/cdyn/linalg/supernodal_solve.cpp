@@ -202,9 +202,14 @@ SupernodalSolve::SupernodalSolve(const SupernodalFactor& L, int threads) : threa
 }
 
 void SupernodalSolve::solve(const SupernodalFactor& L, double* x) const {
+  forward(L, x);
+  backward(L, x);
+}
+
+void SupernodalSolve::forward(const SupernodalFactor& L, double* x) const {
   const int ns = L.nsuper;
   const int groups = static_cast<int>(groups_.size());
-  std::vector<double> E(max_rows_), G(max_rows_);
+  std::vector<double> E(max_rows_);
   tails_.resize(tail_entries_);
   double* tails = tails_.data();
   // Forward: the subtrees, each by one thread, their updates to their own rows made and
@@ -230,7 +235,13 @@ void SupernodalSolve::solve(const SupernodalFactor& L, double* x) const {
       subtract(b, E.data(), b.nc, b.ld, x);
     }
   }
-  // Back: R from the root down, then the subtrees, each by one thread.
+}
+
+void SupernodalSolve::backward(const SupernodalFactor& L, double* x) const {
+  const int ns = L.nsuper;
+  const int groups = static_cast<int>(groups_.size());
+  std::vector<double> G(max_rows_);
+  // R from the root down, then the subtrees, each by one thread.
   for (int j = ns - 1; j >= 0; --j)
     if (!in_tree_[j]) back_supernode(Block(L, j), x, G.data());
 #pragma omp parallel for schedule(static, 1) num_threads(std::max(groups, 1)) if (groups > 1)
@@ -239,6 +250,40 @@ void SupernodalSolve::solve(const SupernodalFactor& L, double* x) const {
     for (const Range& range : groups_[g])
       for (int j = range.last; j >= range.first; --j) back_supernode(Block(L, j), x, work.data());
   }
+}
+
+SupernodalPaths::SupernodalPaths(const SupernodalFactor& L) : of_column_(L.n), parent_(L.nsuper, -1), z_(L.n, 0.0) {
+  int max_rows = 0;
+  for (int j = 0; j < L.nsuper; ++j) {
+    for (int k = L.super[j]; k < L.super[j + 1]; ++k) of_column_[k] = j;
+    max_rows = std::max(max_rows, L.pi[j + 1] - L.pi[j]);
+  }
+  for (int j = 0; j < L.nsuper; ++j) {
+    const Block b(L, j);
+    if (b.ld > b.nc) parent_[j] = of_column_[b.rows[b.nc]];
+  }
+  E_.resize(max_rows);
+}
+
+double SupernodalPaths::unit_forward(const SupernodalFactor& L, int k, std::vector<int>& rows,
+                                     std::vector<double>& values) const {
+  rows.clear();
+  values.clear();
+  double flops = 0.0;
+  z_[k] = 1.0;
+  // (the entries of k's supernode before k are zero and stay so)
+  for (int j = of_column_[k]; j >= 0; j = parent_[j]) {
+    const Block b(L, j);
+    forward_supernode(b, z_.data() + b.rows[0], E_.data());
+    subtract(b, E_.data(), b.nc, b.ld, z_.data());
+    flops += 2.0 * b.ld * b.nc;
+    for (int c = std::max(k, L.super[j]); c < L.super[j + 1]; ++c) {
+      rows.push_back(c);
+      values.push_back(z_[c]);
+      z_[c] = 0.0;
+    }
+  }
+  return flops;
 }
 
 }  // namespace cdyn

@@ -56,6 +56,9 @@ class SupernodalSolve {
   SupernodalSolve(const SupernodalFactor& L, int threads);
   // x ← L⁻ᵀ L⁻¹ x, x in L's (permuted) order.  L must have the pattern it was cut from.
   void solve(const SupernodalFactor& L, double* x) const;
+  // Its two halves, x ← L⁻¹ x and x ← L⁻ᵀ x (solve() is the one, then the other).
+  void forward(const SupernodalFactor& L, double* x) const;
+  void backward(const SupernodalFactor& L, double* x) const;
   int threads() const { return threads_; }  // as cut for (the groups may be fewer)
   // The fraction of L's entries swept by one thread (R's): what bounds the speed-up.
   double serial_fraction() const { return serial_fraction_; }
@@ -77,6 +80,24 @@ class SupernodalSolve {
   int max_rows_ = 0;            // the tallest supernode (workspace)
   double serial_fraction_ = 1.0;
   double span_fraction_ = 1.0;
+};
+
+// The forward solve of a unit vector, z = L⁻¹ e_k, on k's path alone: a column's rows
+// lie among its ancestors in the elimination tree, so z is nonzero only on the supernodes
+// from k's to the root (on a mesh, a few separators on the way up: about a twentieth of
+// a sweep's entries on a 2D grid of 25 000 unknowns), and costs their entries alone.
+// What a solve with a few rows and columns of the factorized matrix eliminated needs,
+// one such column each (qp/pdas/capacitance_solve.hpp).
+class SupernodalPaths {
+ public:
+  explicit SupernodalPaths(const SupernodalFactor& L);
+  // z's entries on k's path: rows (of L, increasing) and values; returns the flops.
+  double unit_forward(const SupernodalFactor& L, int k, std::vector<int>& rows, std::vector<double>& values) const;
+
+ private:
+  std::vector<int> of_column_;  // the supernode of each column
+  std::vector<int> parent_;     // each supernode's parent in the tree (−1: a root)
+  mutable std::vector<double> z_, E_;  // zero between calls; a supernode's updates below
 };
 
 }  // namespace cdyn
