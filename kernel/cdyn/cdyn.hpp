@@ -71,6 +71,7 @@
 #ifdef CDYN_WITH_NLOPT
 #include "cdyn/qp/nlopt.hpp"
 #endif
+#include "cdyn/qp/pdas/capacitance_solve.hpp"
 #include "cdyn/qp/pdas/explicit_reduced_system.hpp"
 #include "cdyn/qp/pdas/free_block_factor.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
