@@ -595,6 +595,48 @@ TEST(QPSolvers, PdasGoesBackToTheFactorOfSWhenNothingIsHeld) {
   EXPECT_LT((r.X - reference.X).lpNorm<Eigen::Infinity>(), 1e-14 * reference.X.lpNorm<Eigen::Infinity>());
 }
 
+TEST(QPSolvers, PdasHoldsAFewUnknownsByTheFactorOfSAndTheirCapacitanceMatrix) {
+  // A membrane touching the obstacle at a few points that move from call to call (the
+  // chattering contact's sets of 2–20 vertices).  With S's own factor in hand, each set
+  // is solved by it and the capacitance matrix of the held unknowns: no CG, no
+  // factorization, no row update after the first call, and every answer the factor of
+  // S̃'s own to round-off.  Without it (pdas_capacitance_from = ∞), the same calls go to
+  // CG (before: the chattering membrane at n = 160, P1+/P0 midpoint, spent two CG
+  // solves, 4–5 ms, on each QP that a solve with the factor, 1.8 ms, now serves).  (On
+  // this small grid only when asked: by default a solve must cost 10⁶ flops.)
+  const int m = 30, n = m * m;
+  BoundQP qp = grid_obstacle(m, 24.0);
+  QPOptions with, by_factor, without;
+  with.pdas_capacitance_from = 0.0;
+  by_factor.pdas_cg_iterations = 0;
+  by_factor.pdas_capacitance_from = without.pdas_capacitance_from = inf;
+  cdyn::PDASSolver pdas(with), cg(without), by_default;
+  qp.r.setConstant(n, 1.0);
+  QPResult r = pdas.solve(qp), r_cg = cg.solve(qp), r_default = by_default.solve(qp);
+  const auto first = pdas.counters();
+  for (int call = 0; call < 6; ++call) {
+    qp.r.setConstant(n, 1.0);
+    for (int spot = 0; spot < 3; ++spot) qp.r[(7 * call + 97 * spot + 31) % n] = -5.0;  // pressed: held
+    r = pdas.solve(qp, &r);
+    r_cg = cg.solve(qp, &r_cg);
+    r_default = by_default.solve(qp, &r_default);
+    expect_kkt(qp, r, QPOptions{}.tol, "call " + std::to_string(call));
+    ASSERT_EQ(r.active.size(), 3u);
+    cdyn::PDASSolver fresh(by_factor);
+    const QPResult expected = fresh.solve(qp);
+    EXPECT_LT((r.X - expected.X).lpNorm<Eigen::Infinity>(), 1e-14 * expected.X.lpNorm<Eigen::Infinity>());
+  }
+  const auto after = pdas.counters();
+  EXPECT_GT(after.capacitance_solves, 6);
+  EXPECT_EQ(after.cg_solves, 0);
+  EXPECT_EQ(after.factorizations, first.factorizations);
+  EXPECT_EQ(after.row_updates, 0);
+  EXPECT_EQ(after.capacitance_columns, 18);  // each held unknown's column made once
+  EXPECT_GT(cg.counters().cg_solves, 6);
+  EXPECT_EQ(cg.counters().capacitance_solves, 0);
+  EXPECT_EQ(by_default.counters().capacitance_solves, 0);  // (a solve here: 5e4 flops)
+}
+
 TEST(QPSolvers, PdasPricesALiftOffFromAFreeBlockAsTheWholeFactorization) {
   // A body resting on the obstacle (its factor a free block's: most unknowns held) lifts
   // off but for a strip.  Bringing the factor to that set is a factorization of the

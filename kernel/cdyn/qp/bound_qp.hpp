@@ -69,6 +69,13 @@ struct QPOptions {
   // fill-reducing ordering, instead of S̃ in S's pattern (whose fill does not shrink with
   // the free set); 0: never.  Resting contact, most unknowns on the obstacle.
   double pdas_free_block = 0.5;
+  // pdas, explicit S: a set holding a few unknowns, while the factor is S's own, solved
+  // with that factor and the dense capacitance matrix of the held unknowns
+  // (qp/pdas/capacitance_solve.hpp: one solve's cost, exact) where its columns and
+  // matrix cost at most one more solve, before CG or moving the factor — if a solve
+  // with S's factor costs at least this many flops (10⁶: the membrane from n = 160 on;
+  // on smaller problems its fixed work outweighs what it saves); infinity: never.
+  double pdas_capacitance_from = 1e6;
   // pdas, explicit S: never factorize; every reduced system S̃ by the masked CG above, at
   // most max(pdas_cg_iterations, 2000) iterations a solve (NumericalError beyond).  The
   // path for large 3D problems, whose Cholesky factor fills far more than in 2D while

@@ -74,6 +74,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   }
   S_tilde_ = S_;
   chol_.forget_kept();
+  capacitance_.clear();
   factorize_counted(chol_, S_, "S is not positive definite (CHOLMOD: the factorization breaks down", counters_);
   whole_in_chol_ = true;
   take_whole_factor();
@@ -99,7 +100,7 @@ void ExplicitReducedSystem::refactorize(const HeldSet& held) {
 void ExplicitReducedSystem::factor_made_for(const HeldSet& held) {
   factor_held_ = held;
   updates_since_factorization_ = 0;
-  cg_mode_ = false;
+  cg_mode_ = capacitance_mode_ = false;
   cg_since_sync_ = 0;
 }
 
@@ -124,7 +125,7 @@ void ExplicitReducedSystem::take_whole_factor() {
 
 // Brings the factor to `held` (row updates or a refactorization), leaving CG mode.
 void ExplicitReducedSystem::sync_factor(const HeldSet& held) {
-  cg_mode_ = false;
+  cg_mode_ = capacitance_mode_ = false;
   std::vector<int> to_delete, to_add;
   for (int i = 0; i < n_; ++i)
     if (held[i] != factor_held_[i]) (held[i] ? to_delete : to_add).push_back(i);
@@ -155,13 +156,20 @@ void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
   }
   if (fresh || !chol_.factorized()) return refactorize(held);
   if (held == factor_held_) {
-    cg_mode_ = false;
+    cg_mode_ = capacitance_mode_ = false;
     return;
   }
   // Nothing held, and S's own factor at hand: one solve with it.  (The body has lifted
   // off: the chattering membrane between its contacts, the falling one before impact.)
-  if ((whole_in_chol_ || chol_.has_kept()) && std::none_of(held.begin(), held.end(), [](char h) { return h != 0; }))
-    return take_whole_factor();
+  const std::vector<int> held_list = indices_where(n_, [&](int i) { return held[i] != 0; });
+  if ((whole_in_chol_ || chol_.has_kept()) && held_list.empty()) return take_whole_factor();
+  // A few held, S's factor in chol_: that factor and their capacitance matrix.
+  if (capacitance_pays(held_list)) {
+    cg_mode_ = false;
+    capacitance_mode_ = true;
+    return;
+  }
+  capacitance_mode_ = false;
   if (cg_ && !cg_failed_ && !by_factor_ && !resync_due(held) && cg_pays(held)) {
     if (!(cg_mode_ && held == cg_held_))
       cg_mode_uses_ = 1;
@@ -182,6 +190,12 @@ const Eigen::VectorXd& ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd&
   last_cg_residual_ = 0.0;
   const bool resume = resume_cg_ && last_by_cg_;
   resume_cg_ = last_by_cg_ = false;
+  if (capacitance_mode_) {
+    ScopeTimer timer(counters_.solve_s);
+    ++counters_.capacitance_solves;
+    capacitance_.solve(chol_, b, y_last_);
+    return y_last_;
+  }
   if (cg_mode_) {
     // From the last solution (the previous PDAS iterate or step: the systems differ in a
     // few rows and the right-hand side by O(dt)).

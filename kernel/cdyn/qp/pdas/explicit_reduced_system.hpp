@@ -31,7 +31,12 @@
 //     on it (qp/pdas/free_block_factor.hpp).
 //   - S's own factor (nothing held) is kept aside when the factor first leaves it, and
 //     taken back, a copy, when nothing is held again (a body lifted off): the steps are
-//     then the linear step's one solve, where CG pairs and a refactorization would be.
+//     then the linear step's one solve, where CG pairs and a refactorization would be;
+//   - while the factor is S's own, a set that holds a few unknowns (a membrane touching
+//     the obstacle here and there) is solved with it and the capacitance matrix of the
+//     held unknowns (qp/pdas/capacitance_solve.hpp): one solve's cost, exact, where CG
+//     costs about two, when its columns and matrix cost at most another solve
+//     (capacitance_pays).
 // A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
 // stops at the first non-positive pivot: NumericalError naming the unknown) and is the
 // unconstrained solve of a cold start.
@@ -45,6 +50,7 @@
 
 #include "cdyn/linalg/masked_cg.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
+#include "cdyn/qp/pdas/capacitance_solve.hpp"
 #include "cdyn/qp/pdas/free_block_factor.hpp"
 #include "cdyn/qp/pdas/reduced_system.hpp"
 
@@ -73,7 +79,7 @@ class ExplicitReducedSystem : public ReducedSystem {
     round_off_next_ = to_round_off;
   }
   bool refactorization_may_help() const override {
-    return !opt_.pdas_cg_only && (cg_mode_ || updates_since_factorization_ > 0);
+    return !opt_.pdas_cg_only && (cg_mode_ || capacitance_mode_ || updates_since_factorization_ > 0);
   }
 
  private:
@@ -95,6 +101,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   };
   Sync sync_cost(const HeldSet& held) const;
   bool cg_pays(const HeldSet& held) const;
+  bool capacitance_pays(const std::vector<int>& held_list);
   double cg_iteration_flops() const;
   void track_run(const HeldSet& held);
   const Eigen::VectorXd& solve_tilde(const Eigen::VectorXd& b, double cg_tol);  // into y_last_
@@ -125,6 +132,9 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool round_off_next_ = false;           // and its systems are solved by the factor
   bool by_factor_ = false;                // this call's are (set_held)
   std::optional<MaskedCG> cg_;            // CG on S_ (its preconditioner, work vectors, last residual)
+  // A few unknowns held, the factor S's own: solve_tilde by the capacitance matrix
+  bool capacitance_mode_ = false;
+  CapacitanceSolve capacitance_;          // its columns (of chol_'s factor of S) and matrix
   Eigen::VectorXd y_last_;                // the last solution of solve_tilde: CG's first guess
   double last_cg_residual_ = 0.0;         // CG's scaled residual in the last solve_tilde (0: by the factor)
   bool last_by_cg_ = false;               // the last solve_tilde was a converged CG solve

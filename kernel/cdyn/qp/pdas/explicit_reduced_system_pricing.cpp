@@ -141,4 +141,37 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   return sync_cost(held).flops > cg_flops;
 }
 
+// Whether the capacitance solve with S's own factor serves the held unknowns `held_list`
+// (and if so, its matrix made for them): the factor must be S's, in chol_ (a copy of the
+// kept one would cost a quarter of a solve, and leave the factor of a settled set), and
+// the new columns and the capacitance matrix must cost at most one more solve — with
+// the solve itself, at most two, against CG's loose and tight solves (on the chattering
+// membrane at n = 160, 17 iterations a pair, 2.2 solves' time), and no factor moved.  A column's cost is known once one is made: the
+// first set makes one to measure it.  Only where a solve costs at least
+// pdas_capacitance_from flops: on a small S the capacitance solve's fixed work (the
+// held list, the columns' bookkeeping, two half solves and three passes over the
+// unknowns) outweighs what it saves, and the factor is cheap to move (measured: the
+// disk, 578 unknowns, 47 → 55 µs a QP; the seed's membrane at n = 20, whose first
+// small sets it served, sent its later ones to CG: 0.148 → 0.160 ms a step).  Not for a
+// scheme's solve to round-off (by_factor_: the factor brought to the set, as before).
+bool ExplicitReducedSystem::capacitance_pays(const std::vector<int>& held_list) {
+  if (by_factor_ || !whole_in_chol_ || !chol_.has_halves() || held_list.empty() ||
+      !(chol_.solve_flops() >= opt_.pdas_capacitance_from))
+    return false;
+  ScopeTimer timer(counters_.capacitance_s);
+  if (capacitance_.mean_column_flops() == 0.0) {
+    capacitance_.measure(chol_, held_list.front());
+    ++counters_.capacitance_columns;
+  }
+  const double h = static_cast<double>(held_list.size());
+  const double budget = chol_.solve_flops();
+  const double flops = capacitance_.missing(held_list) * capacitance_.mean_column_flops() +
+                       h * h * capacitance_.mean_column_length() + h * h * h / 3.0;
+  if (flops > budget) return false;
+  counters_.capacitance_columns += capacitance_.missing(held_list);
+  bool ok = false;
+  capacitance_.hold(chol_, held_list, ok);
+  return ok;
+}
+
 }  // namespace cdyn

@@ -39,8 +39,10 @@ struct PDASCounters {
   int damped_iterations = 0;  // projected Newton iterations after a detected cycle
   int cg_solves = 0;       // systems solved by preconditioned CG instead of the factor
   int cg_iterations = 0;   // their CG iterations (one product with S each)
+  int capacitance_solves = 0;   // systems solved with S's factor and a capacitance matrix
+  int capacitance_columns = 0;  // its columns L⁻¹ P e_i made (one per newly held unknown)
   // Wall time in each kind of linear algebra (explicit S; for profiling, bench/):
-  double factorization_s = 0, row_update_s = 0, solve_s = 0, cg_s = 0;
+  double factorization_s = 0, row_update_s = 0, solve_s = 0, cg_s = 0, capacitance_s = 0;
 };
 
 // held[i] ≠ 0: unknown i is held at a bound (it is in the active set A).
