@@ -161,10 +161,10 @@ void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
   }
   // Nothing held, and S's own factor at hand: one solve with it.  (The body has lifted
   // off: the chattering membrane between its contacts, the falling one before impact.)
-  const std::vector<int> held_list = indices_where(n_, [&](int i) { return held[i] != 0; });
-  if ((whole_in_chol_ || chol_.has_kept()) && held_list.empty()) return take_whole_factor();
+  if ((whole_in_chol_ || chol_.has_kept()) && std::none_of(held.begin(), held.end(), [](char h) { return h != 0; }))
+    return take_whole_factor();
   // A few held, S's factor in chol_: that factor and their capacitance matrix.
-  if (capacitance_pays(held_list)) {
+  if (capacitance_pays(held)) {
     cg_mode_ = false;
     capacitance_mode_ = true;
     return;

@@ -101,7 +101,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   };
   Sync sync_cost(const HeldSet& held) const;
   bool cg_pays(const HeldSet& held) const;
-  bool capacitance_pays(const std::vector<int>& held_list);
+  bool capacitance_pays(const HeldSet& held);
   double cg_iteration_flops() const;
   void track_run(const HeldSet& held);
   const Eigen::VectorXd& solve_tilde(const Eigen::VectorXd& b, double cg_tol);  // into y_last_

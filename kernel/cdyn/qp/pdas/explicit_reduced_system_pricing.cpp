@@ -154,20 +154,28 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
 // disk, 578 unknowns, 47 → 55 µs a QP; the seed's membrane at n = 20, whose first
 // small sets it served, sent its later ones to CG: 0.148 → 0.160 ms a step).  Not for a
 // scheme's solve to round-off (by_factor_: the factor brought to the set, as before).
-bool ExplicitReducedSystem::capacitance_pays(const std::vector<int>& held_list) {
-  if (by_factor_ || !whole_in_chol_ || !chol_.has_halves() || held_list.empty() ||
-      !(chol_.solve_flops() >= opt_.pdas_capacitance_from))
-    return false;
+bool ExplicitReducedSystem::capacitance_pays(const HeldSet& held) {
+  const double budget = chol_.solve_flops();
+  if (by_factor_ || !whole_in_chol_ || !chol_.has_halves() || !(budget >= opt_.pdas_capacitance_from)) return false;
   ScopeTimer timer(counters_.capacitance_s);
+  const auto first = std::find_if(held.begin(), held.end(), [](char h) { return h != 0; });
+  if (first == held.end()) return false;
   if (capacitance_.mean_column_flops() == 0.0) {
-    capacitance_.measure(chol_, held_list.front());
+    capacitance_.measure(chol_, static_cast<int>(first - held.begin()));
     ++counters_.capacitance_columns;
   }
+  // The held list, given up as soon as the matrix alone would cost more than the budget
+  // (an impact's thousands of held unknowns cost one pass to the first few dozen).
+  const double length = capacitance_.mean_column_length();
+  const auto matrix_flops = [&](double h) { return h * h * length + h * h * h / 3.0; };
+  std::vector<int> held_list;
+  for (int i = static_cast<int>(first - held.begin()); i < n_; ++i)
+    if (held[i]) {
+      held_list.push_back(i);
+      if (matrix_flops(static_cast<double>(held_list.size())) > budget) return false;
+    }
   const double h = static_cast<double>(held_list.size());
-  const double budget = chol_.solve_flops();
-  const double flops = capacitance_.missing(held_list) * capacitance_.mean_column_flops() +
-                       h * h * capacitance_.mean_column_length() + h * h * h / 3.0;
-  if (flops > budget) return false;
+  if (capacitance_.missing(held_list) * capacitance_.mean_column_flops() + matrix_flops(h) > budget) return false;
   counters_.capacitance_columns += capacitance_.missing(held_list);
   bool ok = false;
   capacitance_.hold(chol_, held_list, ok);
