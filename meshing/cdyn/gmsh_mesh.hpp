@@ -57,4 +57,18 @@ Mesh read_mesh(const std::string& path, const GeoParameters& parameters = {});
 void write_msh(const std::string& geo_or_msh, const std::string& out_path, double version,
                const GeoParameters& parameters = {});
 
+// Both are done by the plugin libcdyn_gmsh.so (gmsh's libraries are loaded only by a run
+// that reads a mesh), opened on the first call from, in this order: the file named by
+// the environment variable CDYN_GMSH_PLUGIN; the paths given to add_gmsh_plugin_path; the
+// program's PREFIX/lib/cdyn/ (an installed cdyn); the build tree; the configured
+// install prefix.  A program built against an installed cdyn (find_package(cdyn)) gets
+// its plugin's path from the CMake package, as CDYN_GMSH_PLUGIN_PATH, added by the
+// inline variable below.  Not found: InputError naming the plugin.
+void add_gmsh_plugin_path(const std::string& path);
+// The plugin file opened ("" before the first read_mesh or write_msh).
+std::string gmsh_plugin_file();
+#ifdef CDYN_GMSH_PLUGIN_PATH
+inline const bool gmsh_plugin_path_added = (add_gmsh_plugin_path(CDYN_GMSH_PLUGIN_PATH), true);
+#endif
+
 }  // namespace cdyn

@@ -22,7 +22,7 @@ endfunction()
 run("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --config ${CONFIG})
 foreach(f include/cdyn/mass_model.hpp include/cdyn/version.hpp include/cdyn/gmsh_mesh.hpp
           include/cdyn/fields_output.hpp lib/cmake/cdyn/cdynConfig.cmake lib/cmake/cdyn/cdynConfigVersion.cmake
-          bin/cdyn)
+          bin/cdyn lib/cdyn/libcdyn_gmsh.so)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "the install tree lacks ${f}")
   endif()
@@ -89,6 +89,12 @@ foreach(expected "N_W 281 N_H 200 dimKerB 81 N_g 81 beta 0.3090 satisfied yes" "
     message(FATAL_ERROR "the outside program did not print '${expected}'")
   endif()
 endforeach()
+# The mesh was read by the installed gmsh plugin (the package gives its path), not the
+# build tree's.
+string(FIND "${last_output}" "gmsh plugin ${prefix}/lib/cdyn/libcdyn_gmsh.so" at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "the outside program did not read its mesh with the installed gmsh plugin")
+endif()
 if(NOT EXISTS ${WORK_DIR}/fields/fields.pvd)
   message(FATAL_ERROR "the outside program wrote no fields.pvd")
 endif()

@@ -5,7 +5,8 @@
 //                  experiments (unit square, n = 10, u fixed on the boundary, u ≥ g at
 //                  every vertex): β = σ_min(G Z) = 0.3090 (the figure `cdyn wellposed
 //                  --set mesh.n=10` prints, tests/cli/CMakeLists.txt, cli_wellposed);
-//   cdyn::meshing  read_mesh of a .geo through gmsh (the L-shape, area 0.75);
+//   cdyn::meshing  read_mesh of a .geo through gmsh (the L-shape, area 0.75), by the
+//                  installed plugin PREFIX/lib/cdyn/libcdyn_gmsh.so;
 //   cdyn::io       a FieldsWriter series of the initial state.
 //
 // Usage: outside LSHAPE.geo OUTDIR
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
 
   const cdyn::Mesh lshape = cdyn::read_mesh(argv[1]);
   std::printf("lshape: %d vertices, %d cells, area %.12f\n", lshape.n_vertices(), lshape.n_cells(), lshape.measure());
+  std::printf("gmsh plugin %s\n", cdyn::gmsh_plugin_file().c_str());
 
   cdyn::ScalarWaveData d;
   d.f = [](double, double, double) { return -1.0; };
