@@ -7,6 +7,7 @@
 // base/
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
+#include "cdyn/base/plugin.hpp"
 #include "cdyn/base/sparse.hpp"
 // mesh/
 #include "cdyn/mesh/cell_geometry.hpp"

@@ -5,11 +5,13 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/base/plugin.hpp"
 #include "gmsh_plugin_table.hpp"
 
 namespace cdyn {
@@ -26,36 +28,21 @@ std::vector<std::filesystem::path> plugin_candidates() {
   std::vector<std::filesystem::path> out;
   if (const char* file = std::getenv("CDYN_GMSH_PLUGIN")) out.emplace_back(file);
   out.insert(out.end(), added_paths().begin(), added_paths().end());
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) out.push_back(exe.parent_path().parent_path() / "lib" / "cdyn" / "libcdyn_gmsh.so");
+  out.push_back(beside_installed_program("libcdyn_gmsh.so"));
   out.emplace_back(CDYN_GMSH_PLUGIN_BUILD);
   out.emplace_back(CDYN_GMSH_PLUGIN_INSTALLED);
   return out;
 }
 
 const GmshPluginTable* opened = nullptr;
-std::string opened_file;
+std::filesystem::path opened_file;
 
 const GmshPluginTable& plugin() {
   if (opened) return *opened;
   std::string tried;
-  for (const auto& file : plugin_candidates()) {
-    if (!std::filesystem::exists(file)) continue;
-    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      tried += std::string(tried.empty() ? "" : "; ") + dlerror();
-      continue;
-    }
-    auto entry = reinterpret_cast<const GmshPluginTable* (*)()>(dlsym(handle, "cdyn_gmsh_plugin"));
-    if (!entry || entry()->version != kGmshPluginVersion) {
-      tried += (tried.empty() ? "" : "; ") + file.string() + ": not this cdyn's gmsh plugin";
-      continue;
-    }
-    opened = entry();
-    opened_file = file.string();
-    return *opened;
-  }
+  opened = open_plugin<GmshPluginTable>(plugin_candidates(), "cdyn_gmsh_plugin", kGmshPluginVersion,
+                                        RTLD_NOW | RTLD_LOCAL, tried, &opened_file);
+  if (opened) return *opened;
   throw InputError("mesh.file", "the gmsh plugin libcdyn_gmsh.so, which reads .geo and .msh files, was not found or "
                                 "not opened (" +
                                     (tried.empty() ? std::string("set CDYN_GMSH_PLUGIN to its path") : tried) + ")");
@@ -65,7 +52,7 @@ const GmshPluginTable& plugin() {
 
 void add_gmsh_plugin_path(const std::string& path) { added_paths().emplace_back(path); }
 
-std::string gmsh_plugin_file() { return opened_file; }
+std::string gmsh_plugin_file() { return opened_file.string(); }
 
 Mesh read_mesh(const std::string& path, const GeoParameters& parameters) {
   return plugin().read_mesh(path, parameters);

@@ -14,27 +14,12 @@
 #include "cdyn/linalg/sparse_cholesky.hpp"
 #include "cdyn/qp/pdas/capacitance_solve.hpp"
 #include "cdyn/qp/pdas/reduced_system.hpp"
+#include "grid_fixtures.hpp"
 
 namespace {
 
 using cdyn::SparseMatrix;
 using Eigen::VectorXd;
-
-// shift I + the 5-point Laplacian of a k × k grid (Dirichlet outside).
-SparseMatrix laplacian(int k, double shift) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [k](int i, int j) { return j * k + i; };
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i) {
-      t.emplace_back(id(i, j), id(i, j), 4.0 + shift);
-      if (i + 1 < k) t.emplace_back(id(i, j), id(i + 1, j), -1.0), t.emplace_back(id(i + 1, j), id(i, j), -1.0);
-      if (j + 1 < k) t.emplace_back(id(i, j), id(i, j + 1), -1.0), t.emplace_back(id(i, j + 1), id(i, j), -1.0);
-    }
-  SparseMatrix S(k * k, k * k);
-  S.setFromTriplets(t.begin(), t.end());
-  S.makeCompressed();
-  return S;
-}
 
 // y with S̃ y = b, S̃ factorized by CHOLMOD.
 VectorXd reference(const SparseMatrix& S, const std::vector<int>& held, const VectorXd& b) {
@@ -51,7 +36,7 @@ VectorXd reference(const SparseMatrix& S, const std::vector<int>& held, const Ve
 // Three held sets on a k × k grid, each against the factor of S̃ itself.
 void check_held_sets(int k, double shift) {
   const int n = k * k;
-  const SparseMatrix S = laplacian(k, shift);
+  const SparseMatrix S = grid_laplacian(k, 4.0 + shift);
   cdyn::SparseCholesky chol;
   chol.analyze(S);
   ASSERT_LT(chol.factorize(S), 0);
@@ -95,7 +80,7 @@ TEST(CapacitanceSolve, KeepsAtMostTheFactorsEntriesInColumns) {
   // columns kept never take more entries than L; past that the old ones are dropped,
   // and the solves stay right.
   const int k = 40, n = k * k;
-  const SparseMatrix S = laplacian(k, 4.0);
+  const SparseMatrix S = grid_laplacian(k, 8.0);
   cdyn::SparseCholesky chol;
   chol.analyze(S);
   ASSERT_LT(chol.factorize(S), 0);

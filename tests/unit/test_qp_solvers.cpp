@@ -21,6 +21,7 @@
 #include "cdyn/qp/checks.hpp"
 #include "cdyn/qp/step_solver.hpp"
 #include "cdyn/qp/pdas/pdas.hpp"
+#include "grid_fixtures.hpp"
 
 namespace {
 
@@ -499,27 +500,10 @@ TEST(QPSolvers, PdasBringsTheFactorToANewSetWhereThatCostsLessThanCg) {
   EXPECT_GT(pdas.counters().row_updates, updates);
 }
 
-// The 5-point stencil on an m × m grid with `diagonal` on the diagonal and −1 for each
-// neighbour: the Laplacian plus (diagonal − 4) I inside, SPD for diagonal > 4.
-SparseMatrix grid_stencil(int m, double diagonal) {
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int k = i * m + j;
-      t.emplace_back(k, k, diagonal);
-      if (i + 1 < m) t.emplace_back(k, k + m, -1.0), t.emplace_back(k + m, k, -1.0);
-      if (j + 1 < m) t.emplace_back(k, k + 1, -1.0), t.emplace_back(k + 1, k, -1.0);
-    }
-  SparseMatrix S(m * m, m * m);
-  S.setFromTriplets(t.begin(), t.end());
-  S.makeCompressed();
-  return S;
-}
-
-// The obstacle X ≥ 0 on grid_stencil(m, diagonal), no load yet.
+// The obstacle X ≥ 0 on grid_laplacian(m, diagonal), no load yet.
 BoundQP grid_obstacle(int m, double diagonal) {
   BoundQP qp;
-  qp.S = grid_stencil(m, diagonal);
+  qp.S = grid_laplacian(m, diagonal);
   qp.lower = VectorXd::Zero(m * m);
   qp.upper = VectorXd::Constant(m * m, inf);
   return qp;
@@ -674,7 +658,7 @@ TEST(QPSolvers, PdasPricesANewSetWithFewFreeUnknownsAsAFreeBlockFactorization) {
   // resting membrane's reconstruction at n = 640, 40 % of its step time).
   const int m = 60, n = m * m;
   BoundQP qp;
-  qp.S = grid_stencil(m, 8.0);
+  qp.S = grid_laplacian(m, 8.0);
   qp.upper = VectorXd::Constant(n, inf);
   qp.lower = VectorXd::Constant(n, -inf);
   qp.r = VectorXd::Constant(n, 1.0);

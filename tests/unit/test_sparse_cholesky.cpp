@@ -15,6 +15,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
+#include "grid_fixtures.hpp"
 
 namespace {
 
@@ -22,20 +23,7 @@ using cdyn::SparseMatrix;
 using Eigen::VectorXd;
 
 // 4 I + the 5-point Laplacian of a k × k grid: eigenvalues in (4, 12), condition < 3.
-SparseMatrix shifted_laplacian(int k) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto id = [k](int i, int j) { return j * k + i; };
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i) {
-      t.emplace_back(id(i, j), id(i, j), 8.0);
-      if (i + 1 < k) t.emplace_back(id(i, j), id(i + 1, j), -1.0), t.emplace_back(id(i + 1, j), id(i, j), -1.0);
-      if (j + 1 < k) t.emplace_back(id(i, j), id(i, j + 1), -1.0), t.emplace_back(id(i, j + 1), id(i, j), -1.0);
-    }
-  SparseMatrix S(k * k, k * k);
-  S.setFromTriplets(t.begin(), t.end());
-  S.makeCompressed();
-  return S;
-}
+SparseMatrix shifted_laplacian(int k) { return grid_laplacian(k, 8.0); }
 
 TEST(SparseCholesky, AGivenOrderingSolvesTheSameSystem) {
   const int k = 30, n = k * k;

@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "cdyn/base/error.hpp"
+#include "cdyn/base/plugin.hpp"
 #include "cdyn/qp/petsc/plugin_table.hpp"
 
 namespace cdyn::petsc {
@@ -26,9 +27,7 @@ int env_int(const char* name) {
 std::vector<std::filesystem::path> plugin_candidates() {
   std::vector<std::filesystem::path> out;
   if (const char* file = std::getenv("CDYN_PETSC_PLUGIN")) out.emplace_back(file);
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) out.push_back(exe.parent_path().parent_path() / "lib" / "cdyn" / "libcdyn_petsc.so");
+  out.push_back(beside_installed_program("libcdyn_petsc.so"));
 #ifdef CDYN_PETSC_PLUGIN_BUILD
   out.emplace_back(CDYN_PETSC_PLUGIN_BUILD);
 #endif
@@ -46,22 +45,10 @@ const PluginTable& plugin() {
   throw InputError("solver.backend", "this cdyn was built without PETSc (CDYN_WITH_PETSC=OFF)");
 #else
   std::string tried;
-  for (const auto& file : plugin_candidates()) {
-    if (!std::filesystem::exists(file)) continue;
-    // RTLD_DEEPBIND: PETSc and MPI resolve among themselves first (plugin_table.hpp)
-    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND);
-    if (!handle) {
-      tried += std::string(tried.empty() ? "" : "; ") + dlerror();
-      continue;
-    }
-    auto entry = reinterpret_cast<const PluginTable* (*)()>(dlsym(handle, "cdyn_petsc_plugin"));
-    if (!entry || entry()->version != kPluginVersion) {
-      tried += (tried.empty() ? "" : "; ") + file.string() + ": not this cdyn's PETSc plugin";
-      continue;
-    }
-    opened = entry();
-    return *opened;
-  }
+  // RTLD_DEEPBIND: PETSc and MPI resolve among themselves first (plugin_table.hpp)
+  opened = open_plugin<PluginTable>(plugin_candidates(), "cdyn_petsc_plugin", kPluginVersion,
+                                    RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND, tried);
+  if (opened) return *opened;
   throw InputError("solver.backend", "the PETSc plugin libcdyn_petsc.so was not found or not opened (" +
                                          (tried.empty() ? std::string("set CDYN_PETSC_PLUGIN to its path") : tried) +
                                          ")");
