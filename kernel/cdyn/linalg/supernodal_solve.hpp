@@ -84,8 +84,9 @@ class SupernodalSolve {
 
 // The forward solve of a unit vector, z = L⁻¹ e_k, on k's path alone: a column's rows
 // lie among its ancestors in the elimination tree, so z is nonzero only on the supernodes
-// from k's to the root (on a mesh, a few separators on the way up: about a twentieth of
-// a sweep's entries on a 2D grid of 25 000 unknowns), and costs their entries alone.
+// from k's to the root (on a mesh, a few separators on the way up) and costs their
+// entries alone: on the membrane's condensed P1+/P0 matrix at n = 160 (25 281 unknowns),
+// 2.5e5 flops, a seventh of the forward sweep's.
 // What a solve with a few rows and columns of the factorized matrix eliminated needs,
 // one such column each (qp/pdas/capacitance_solve.hpp).
 class SupernodalPaths {

@@ -141,13 +141,14 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
   return sync_cost(held).flops > cg_flops;
 }
 
-// Whether the capacitance solve with S's own factor serves the held unknowns `held_list`
-// (and if so, its matrix made for them): the factor must be S's, in chol_ (a copy of the
-// kept one would cost a quarter of a solve, and leave the factor of a settled set), and
-// the new columns and the capacitance matrix must cost at most one more solve — with
-// the solve itself, at most two, against CG's loose and tight solves (on the chattering
-// membrane at n = 160, 17 iterations a pair, 2.2 solves' time), and no factor moved.  A column's cost is known once one is made: the
-// first set makes one to measure it.  Only where a solve costs at least
+// Whether the capacitance solve with S's own factor serves the unknowns `held` holds (and
+// if so, its matrix made for them): the factor must be S's, in chol_ (a copy of the kept
+// one would cost a quarter of a solve, and leave the factor of a settled set), and the
+// new columns and the capacitance matrix must cost at most one more solve — with the
+// solve itself, at most two, against CG's loose and tight solves (on the chattering
+// membrane at n = 160, 17 iterations a pair, 2.2 solves' time), and no factor moved.  A
+// column's cost is known once one is made: the first set makes one to measure it.  Only
+// where a solve costs at least
 // pdas_capacitance_from flops: on a small S the capacitance solve's fixed work (the
 // held list, the columns' bookkeeping, two half solves and three passes over the
 // unknowns) outweighs what it saves, and the factor is cheap to move (measured: the
