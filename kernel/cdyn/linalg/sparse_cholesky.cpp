@@ -101,6 +101,24 @@ struct SparseCholesky::Impl {
     if (!sweeps || sweeps->threads() != threads) sweeps = std::make_unique<SupernodalSolve>(supernodal(*L), threads);
     return sweeps.get();
   }
+  // to = P from (L's order) or from = Pᵀ to: a permutation, every entry written by one thread.
+  void to_factor_order(const double* from, double* to) const {
+    const int* perm = static_cast<const int*>(L->Perm);
+    const int n = static_cast<int>(L->n);
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+    for (int k = 0; k < n; ++k) to[k] = from[perm[k]];
+  }
+  void from_factor_order(const double* from, double* to) const {
+    const int* perm = static_cast<const int*>(L->Perm);
+    const int n = static_cast<int>(L->n);
+#pragma omp parallel for schedule(static) if (n >= kParallelWork)
+    for (int k = 0; k < n; ++k) to[perm[k]] = from[k];
+  }
+  void check_size(const Eigen::VectorXd& v, const char* what) const {
+    if (v.size() != static_cast<long>(L->n))
+      throw InputError(std::string("SparseCholesky: ") + what + " of a vector of " + std::to_string(v.size()) +
+                       " entries with a factor of " + std::to_string(L->n));
+  }
   // v ← L⁻¹ v or L⁻ᵀ v (sys: CHOLMOD_L or CHOLMOD_Lt) by CHOLMOD, v in L's order.
   void cholmod_half(int sys, Eigen::VectorXd& v) {
     cholmod_dense B;
@@ -204,18 +222,12 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
   if (!m.L) throw InputError("SparseCholesky: solve() without a factor (factorize() first, or it failed)");
   if (const SupernodalSolve* sweeps = m.subtree_sweeps()) {
     // Our sweeps by subtrees, on the kernel's threads (CHOLMOD's are one sweep).
-    const SupernodalFactor L = Impl::supernodal(*m.L);
-    const int* perm = static_cast<const int*>(m.L->Perm);
-    const int n = static_cast<int>(b.size());
-    m.y.resize(n);
-    double* y = m.y.data();
-    // (a permutation: every entry written by one thread)
-#pragma omp parallel for schedule(static) if (n >= kParallelWork)
-    for (int k = 0; k < n; ++k) y[k] = b[perm[k]];
-    sweeps->solve(L, y);
-    Eigen::VectorXd x(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelWork)
-    for (int k = 0; k < n; ++k) x[perm[k]] = y[k];
+    m.check_size(b, "solve()");
+    m.y.resize(b.size());
+    m.to_factor_order(b.data(), m.y.data());
+    sweeps->solve(Impl::supernodal(*m.L), m.y.data());
+    Eigen::VectorXd x(b.size());
+    m.from_factor_order(m.y.data(), x.data());
     return x;
   }
   cholmod_dense B;
@@ -237,10 +249,9 @@ bool SparseCholesky::has_halves() const { return impl_->L && impl_->L->is_ll; }
 void SparseCholesky::forward(Eigen::VectorXd& v) const {
   Impl& m = *impl_;
   if (!has_halves()) throw InputError("SparseCholesky: forward() needs an LLᵀ factor");
-  const int* perm = static_cast<const int*>(m.L->Perm);
-  const int n = static_cast<int>(v.size());
-  m.y.resize(n);
-  for (int k = 0; k < n; ++k) m.y[k] = v[perm[k]];
+  m.check_size(v, "forward()");
+  m.y.resize(v.size());
+  m.to_factor_order(v.data(), m.y.data());
   v.swap(m.y);
   if (const SupernodalSolve* sweeps = m.subtree_sweeps())
     sweeps->forward(Impl::supernodal(*m.L), v.data());
@@ -251,14 +262,13 @@ void SparseCholesky::forward(Eigen::VectorXd& v) const {
 void SparseCholesky::backward(Eigen::VectorXd& v) const {
   Impl& m = *impl_;
   if (!has_halves()) throw InputError("SparseCholesky: backward() needs an LLᵀ factor");
+  m.check_size(v, "backward()");
   if (const SupernodalSolve* sweeps = m.subtree_sweeps())
     sweeps->backward(Impl::supernodal(*m.L), v.data());
   else
     m.cholmod_half(CHOLMOD_Lt, v);
-  const int* perm = static_cast<const int*>(m.L->Perm);
-  const int n = static_cast<int>(v.size());
-  m.y.resize(n);
-  for (int k = 0; k < n; ++k) m.y[perm[k]] = v[k];
+  m.y.resize(v.size());
+  m.from_factor_order(v.data(), m.y.data());
   v.swap(m.y);
 }
 

@@ -61,7 +61,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
     // as non-convergence by solve_tilde).
     cg_.reset();
     cg_.emplace(S_);
-    cg_mode_ = true;
+    way_ = Way::Cg;
     cg_failed_ = false;
     cg_held_.assign(n_, 0);
     return;
@@ -100,7 +100,7 @@ void ExplicitReducedSystem::refactorize(const HeldSet& held) {
 void ExplicitReducedSystem::factor_made_for(const HeldSet& held) {
   factor_held_ = held;
   updates_since_factorization_ = 0;
-  cg_mode_ = capacitance_mode_ = false;
+  way_ = Way::Factor;
   cg_since_sync_ = 0;
 }
 
@@ -125,7 +125,7 @@ void ExplicitReducedSystem::take_whole_factor() {
 
 // Brings the factor to `held` (row updates or a refactorization), leaving CG mode.
 void ExplicitReducedSystem::sync_factor(const HeldSet& held) {
-  cg_mode_ = capacitance_mode_ = false;
+  way_ = Way::Factor;
   std::vector<int> to_delete, to_add;
   for (int i = 0; i < n_; ++i)
     if (held[i] != factor_held_[i]) (held[i] ? to_delete : to_add).push_back(i);
@@ -156,7 +156,7 @@ void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
   }
   if (fresh || !chol_.factorized()) return refactorize(held);
   if (held == factor_held_) {
-    cg_mode_ = capacitance_mode_ = false;
+    way_ = Way::Factor;
     return;
   }
   // Nothing held, and S's own factor at hand: one solve with it.  (The body has lifted
@@ -165,38 +165,36 @@ void ExplicitReducedSystem::set_held(const HeldSet& held, bool fresh) {
     return take_whole_factor();
   // A few held, S's factor in chol_: that factor and their capacitance matrix.
   if (capacitance_pays(held)) {
-    cg_mode_ = false;
-    capacitance_mode_ = true;
+    way_ = Way::Capacitance;
     return;
   }
-  capacitance_mode_ = false;
   if (cg_ && !cg_failed_ && !by_factor_ && !resync_due(held) && cg_pays(held)) {
-    if (!(cg_mode_ && held == cg_held_))
+    if (!(way_ == Way::Cg && held == cg_held_))
       cg_mode_uses_ = 1;
     else if (cg_held_call_ != calls_)
       ++cg_mode_uses_;
     cg_held_call_ = calls_;
-    cg_mode_ = true;  // the factor stays as it is; solve_tilde runs CG
+    way_ = Way::Cg;  // the factor stays as it is; solve_tilde runs CG
     cg_held_ = held;
     return;
   }
   sync_factor(held);
 }
 
-// Solves S̃ y = b: by CG when the factor is not that of the held set (stopping at the
-// Jacobi-scaled residual cg_tol, masked_cg.hpp), else by the factor (to round-off).
+// Solves S̃ y = b the way set_held chose: by CG (stopping at the Jacobi-scaled residual
+// cg_tol, masked_cg.hpp), by the capacitance matrix, or by the factor (to round-off).
 const Eigen::VectorXd& ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd& b, double cg_tol) {
   ++counters_.solves;
   last_cg_residual_ = 0.0;
   const bool resume = resume_cg_ && last_by_cg_;
   resume_cg_ = last_by_cg_ = false;
-  if (capacitance_mode_) {
+  if (way_ == Way::Capacitance) {
     ScopeTimer timer(counters_.solve_s);
     ++counters_.capacitance_solves;
     capacitance_.solve(chol_, b, y_last_);
     return y_last_;
   }
-  if (cg_mode_) {
+  if (way_ == Way::Cg) {
     // From the last solution (the previous PDAS iterate or step: the systems differ in a
     // few rows and the right-hand side by O(dt)).
     // (y_last_ is iterated in place: CG's answer, or overwritten by the factor's below)

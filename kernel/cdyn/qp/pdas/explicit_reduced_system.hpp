@@ -79,7 +79,7 @@ class ExplicitReducedSystem : public ReducedSystem {
     round_off_next_ = to_round_off;
   }
   bool refactorization_may_help() const override {
-    return !opt_.pdas_cg_only && (cg_mode_ || capacitance_mode_ || updates_since_factorization_ > 0);
+    return !opt_.pdas_cg_only && (way_ != Way::Factor || updates_since_factorization_ > 0);
   }
 
  private:
@@ -121,8 +121,11 @@ class ExplicitReducedSystem : public ReducedSystem {
   // chol_ was first refactorized or updated for a held set, so that the empty held set
   // (the body lifted off) costs a copy of it and not a factorization.
   bool whole_in_chol_ = false;
-  // CG on S̃ for a held set other than the factor's (QPOptions::pdas_cg_iterations)
-  bool cg_mode_ = false;                  // solve_tilde uses CG with cg_held_
+  // How solve_tilde solves the held set of the last set_held: by the factor (that set's),
+  // by CG on S̃ (cg_held_, QPOptions::pdas_cg_iterations), or by S's own factor and the
+  // capacitance matrix of the held unknowns (a few held, capacitance_).
+  enum class Way { Factor, Cg, Capacitance };
+  Way way_ = Way::Factor;
   bool cg_failed_ = false;                // CG did not converge once for this S: not tried again
   HeldSet cg_held_;
   int cg_since_sync_ = 0;                 // CG iterations since the factor was last (re)made
@@ -132,8 +135,6 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool round_off_next_ = false;           // and its systems are solved by the factor
   bool by_factor_ = false;                // this call's are (set_held)
   std::optional<MaskedCG> cg_;            // CG on S_ (its preconditioner, work vectors, last residual)
-  // A few unknowns held, the factor S's own: solve_tilde by the capacitance matrix
-  bool capacitance_mode_ = false;
   CapacitanceSolve capacitance_;          // its columns (of chol_'s factor of S) and matrix
   Eigen::VectorXd y_last_;                // the last solution of solve_tilde: CG's first guess
   double last_cg_residual_ = 0.0;         // CG's scaled residual in the last solve_tilde (0: by the factor)

@@ -43,7 +43,7 @@ bool ExplicitReducedSystem::priced_as_refactorization(int changes) const {
 // pdas_cg_resync CG iterations since the last sync, if set.
 bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
   if (opt_.pdas_cg_resync >= 0 && cg_since_sync_ >= opt_.pdas_cg_resync) return true;
-  return cg_mode_ && held == cg_held_ && cg_held_call_ != calls_ && cg_mode_uses_ + 1 >= kSettled &&
+  return way_ == Way::Cg && held == cg_held_ && cg_held_call_ != calls_ && cg_mode_uses_ + 1 >= kSettled &&
          resync_pays(held);
 }
 
@@ -175,9 +175,10 @@ bool ExplicitReducedSystem::capacitance_pays(const HeldSet& held) {
       held_list.push_back(i);
       if (matrix_flops(static_cast<double>(held_list.size())) > budget) return false;
     }
-  const double h = static_cast<double>(held_list.size());
-  if (capacitance_.missing(held_list) * capacitance_.mean_column_flops() + matrix_flops(h) > budget) return false;
-  counters_.capacitance_columns += capacitance_.missing(held_list);
+  const int missing = capacitance_.missing(held_list);
+  if (missing * capacitance_.mean_column_flops() + matrix_flops(static_cast<double>(held_list.size())) > budget)
+    return false;
+  counters_.capacitance_columns += missing;
   bool ok = false;
   capacitance_.hold(chol_, held_list, ok);
   return ok;
