@@ -227,7 +227,17 @@ const Eigen::VectorXd& ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd&
 
 Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const HeldSet& held,
                                                    const Eigen::VectorXd& value, double tol) {
-  set_held(held);
+  set_held(held);  // (a resumed solve's set too: the CG measured so far may now price the factor lower)
+  if (!(resume_cg_ && last_by_cg_)) build_rhs(qp, held, value);  // (resumed: b̃ is the last one)
+  const Eigen::VectorXd& y = solve_tilde(b_, tol);
+  Eigen::VectorXd X(n_);  // y with X_A = value_A exactly
+#pragma omp parallel for schedule(static) if (2L * n_ >= kParallelWork)
+  for (int i = 0; i < n_; ++i) X[i] = held[i] ? value[i] : y[i];
+  return X;
+}
+
+// b_ = b̃, the right-hand side of S̃ X = b̃ for `held` and the held values `value`.
+void ExplicitReducedSystem::build_rhs(const BoundQP& qp, const HeldSet& held, const Eigen::VectorXd& value) {
   // b̃_I = r_I − S_IA X_A, b̃_A = X_A.  S being symmetric, b̃_i for a free i is also a
   // gather over column i, its terms in the same order (j increasing) as the scatter's
   // over the held columns j (the same sum where S is symmetric to the bit): whichever
@@ -235,7 +245,8 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
   // about 99 %, where the scatter over S's held columns was a quarter of pdas's own
   // time at n = 640).
   // (b̃ starts as r on I and X_A on A, in one pass; the sums below touch only I)
-  Eigen::VectorXd b(n_);
+  Eigen::VectorXd& b = b_;
+  b.resize(n_);
   const auto n_held = std::count_if(held.begin(), held.end(), [](char h) { return h != 0; });
 #pragma omp parallel for schedule(static) if (2L * n_ >= kParallelWork)
   for (int i = 0; i < n_; ++i) b[i] = held[i] ? value[i] : qp.r[i];
@@ -267,11 +278,6 @@ Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const Held
       }
     }
   }
-  const Eigen::VectorXd& y = solve_tilde(b, tol);
-  Eigen::VectorXd X(n_);  // y with X_A = value_A exactly
-#pragma omp parallel for schedule(static) if (2L * n_ >= kParallelWork)
-  for (int i = 0; i < n_; ++i) X[i] = held[i] ? value[i] : y[i];
-  return X;
 }
 
 // After a CG solve the free rows of λ are CG's residual with the sign changed: its b̃_I

@@ -205,29 +205,42 @@ QPResult PDASSolver::solve(const BoundQP& qp, const QPResult* warm_start) {
   bool tight = false;            // this iterate confirms a repeat found on a loose solve
   bool refactorized = false;     // the one fresh factorization has been spent
   bool cycled = false;
+  double held_max = 0.0;
   int it = 0;
   while (it < opt.max_iterations) {
     ++it;
     result.iterations = it;
-    // Newton step: the minimizer with the active set held at its bounds.
-    X0.swap(X);
-    held0.swap(held);
-    const double held_max = held_at_bounds(qp, state, held, value);
-    X = system.solve_fixed(qp, held, value, tolerance(held_max, tight));
-    const ReducedSystem::Iterate last{X0, held0};
-    system.reaction(qp, s.form, X, held, lam, it > 1 ? &last : nullptr);
-    NextSet next = pdas_rule(qp, D, X, lam, state);
-    if (next.changes == 0 && !tight && system.last_residual() > tolerance(held_max, true)) {
-      tight = true;  // a repeat on a loose solve: confirm it on the same system solved to tol/2
-      system.resume_next();
-      continue;
+    NextSet next;
+    if (!tight) {
+      // Newton step: the minimizer with the active set held at its bounds.
+      X0.swap(X);
+      held0.swap(held);
+      held_max = held_at_bounds(qp, state, held, value);
+      X = system.solve_fixed(qp, held, value, tolerance(held_max, false));
+      const ReducedSystem::Iterate last{X0, held0};
+      system.reaction(qp, s.form, X, held, lam, it > 1 ? &last : nullptr);
+      next = pdas_rule(qp, D, X, lam, state);
+      if (next.changes == 0 && system.last_residual() > tolerance(held_max, true)) {
+        tight = true;  // a repeat on a loose solve: confirm it on the same system solved to tol/2
+        system.resume_next();
+        continue;
+      }
+    } else {
+      // The confirmation: the same held set and values, the interrupted solve resumed;
+      // λ from a whole product at once, since a repeat ends the iteration with it (an
+      // inexact solve's updated residual has drifted by round-off) — the rule on the
+      // product's λ is the final test's active set, and its maxima the final residual.
+      X = system.solve_fixed(qp, held, value, tolerance(held_max, true));
+      lam = s.form.gradient(X);
+      next = pdas_rule(qp, D, X, lam, state);
     }
+    const bool lam_exact = tight || !system.last_inexact();
     tight = false;
     if (next.changes == 0) {
       // X is exact up to the linear solve.  λ from a whole product (an inexact solve's
       // updated residual has drifted by round-off); refine if the residual says so.
       result.X = X;
-      if (system.last_inexact()) {
+      if (!lam_exact) {
         lam = s.form.gradient(X);
         result.kkt_residual = kkt_residual(qp, X, lam, &D);
         result.active = active_set(qp, X, lam, D);

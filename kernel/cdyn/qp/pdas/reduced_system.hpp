@@ -109,7 +109,8 @@ class ReducedSystem {
 
   // Inexact solves.  The scaled residual the last solve reached (0: a direct solve);
   // whether it was inexact; resume_next(): the next solve_fixed is the last one again
-  // at a smaller tol, so the interrupted iteration may go on; set_first_guess(): where
+  // (the same held set and values) at a smaller tol, so the interrupted iteration may go
+  // on from the same right-hand side; set_first_guess(): where
   // the next iterative solve starts (the previous result, or the warm start).
   virtual double last_residual() const { return 0.0; }
   virtual bool last_inexact() const { return false; }
