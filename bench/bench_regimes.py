@@ -4,7 +4,7 @@ in every regime"): the mean wall time of a step over a window of steps with the
 obstacle, against the same steps without it (obstacle.enabled = false: the same S, one
 forward/back solve per step), for P1+/P0 midpoint and P1/P1 backward Euler.
 
-Usage: bench_regimes.py CDYN SOURCE_DIR OUT_DIR [--repeat R] [--only NAME,...]
+Usage: bench_regimes.py CDYN SOURCE_DIR OUT_DIR [--repeat R] [--only NAME,...] [--cpu K]
 
 Regimes (each a scene and a window of steps):
   impact    the seed's membrane, n = 160, dt = 0.001, steps 211–310: the impact and the
@@ -19,7 +19,11 @@ Each (regime, method) runs R times with and R times without the obstacle, altern
 so that both see the same machine; the figure is the ratio of the means over the window
 of history.csv's step_s (the whole step: QP, update, reconstruction), averaged over the
 repetitions — the mean, not the median: the slow steps are the point. One core
-(OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), fields and plots off.
+(OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), fields and plots off, every run on the same
+CPU (--cpu, by default the first this process may use): the cores of a virtual machine
+need not be equally fast (docs/performance.md, "Both cores": the second core of the
+2-core machine ran the linear impact window 1.2–2.2 times slower than the first), and a
+contact run on one with its linear run on the other gave ratios of 0.8 to 1.7.
 """
 import argparse
 import csv
@@ -75,12 +79,14 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", default="")
+    ap.add_argument("--cpu", type=int, default=min(os.sched_getaffinity(0)))
     a = ap.parse_args()
+    os.sched_setaffinity(0, {a.cpu})  # (the runs inherit it)
     only = set(a.only.split(",")) if a.only else set(REGIMES)
     os.makedirs(a.out, exist_ok=True)
     table = []
     print(f"{'regime':9} {'method':22} {'window':>9} {'contact ms':>10} {'linear ms':>9} {'ratio':>6} "
-          f"{'max active':>10} {'unknowns':>8}  (mean over the window, {a.repeat} repetitions)")
+          f"{'max active':>10} {'unknowns':>8}  (mean over the window, {a.repeat} repetitions, CPU {a.cpu})")
     for name, (scene_file, sets, window) in REGIMES.items():
         if name not in only:
             continue
