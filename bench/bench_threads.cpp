@@ -31,7 +31,7 @@
 // work split in proportion to their speeds), and how far apart the states after the
 // window are, max |U₁ − U₂| / max |U₁|: 0 but for the BLAS's round-off (its threaded
 // factorization and solve, linalg/threads.hpp).
-// Run (Release build, an idle machine; about 3 minutes, 5 with --benchmark_repetitions=2):
+// Run (Release build, an idle machine; about 2 minutes, 4 with --benchmark_repetitions=2):
 //   build/bench/bench_threads --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 // CDYN_BENCH_SIZES=80,160 runs other sizes (the window is the same: the impact time does not
 // depend on the mesh); CDYN_BENCH_LINEAR=cg solves the step QPs by CG alone (solver.linear =

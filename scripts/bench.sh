@@ -57,7 +57,7 @@ section "(f) condition (12) at any size: beta of the membrane P1+/P0, n = 40 ...
 CDYN_BENCH_N=40,80,160,320,577 $ONE "$BUILD/bench/bench_condition12" --benchmark_counters_tabular=true
 section "(i) the machine's ceiling for two threads: STREAM triad and the threaded S x, 1 and 2 threads"
 "$BUILD/bench/bench_bandwidth" --benchmark_enable_random_interleaving=true
-section "(i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 3.5 minutes"
+section "(i) both cores: the impact window on 1 and 2 threads, n = 320 and 640, P1+/P0 midpoint and P1/P1 backward Euler, about 2 minutes"
 "$BUILD/bench/bench_threads" --benchmark_counters_tabular=true --benchmark_enable_random_interleaving=true
 section "(k) three dimensions: the cube's contact step against its unknowns, the CG path to n = 32, the factor to n = 16"
 # (the factor at n = 24, 1 more minute: --linear factor --sizes 24; at n = 32, 3.5 more minutes)
