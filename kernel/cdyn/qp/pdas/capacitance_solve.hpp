@@ -49,7 +49,6 @@ class CapacitanceSolve {
   // it is the last set's); returns the flops.
   // False in `ok` if K is not numerically positive definite (then solve() must not be called).
   double hold(const SparseCholesky& chol, const std::vector<int>& held, bool& ok);
-  const std::vector<int>& held() const { return held_; }
   double stored_entries() const { return stored_; }  // of the columns kept (at most L's, solve_flops / 4)
   // y with y_A = b_A and S_II y_I = b_I for the held set A of the last hold().
   void solve(const SparseCholesky& chol, const Eigen::VectorXd& b, Eigen::VectorXd& y) const;
