@@ -71,7 +71,7 @@ ImpactMonitor::Memory impact_memory(const std::vector<double>& v) {
 std::vector<double> totals_values(const RunTotals& t) {
   return {t.qp_iterations, t.qp_seconds,           t.energy_iterations, t.max_kkt,      t.max_reconstruction_kkt,
           t.max_violation, double(t.max_active), t.dissipated,        t.wall_seconds, t.fields_seconds,
-          t.data_work,     t.friction_work};
+          t.data_work,     t.friction_work,        t.reconstruction_seconds, t.reconstruction_iterations};
 }
 
 RunTotals totals(const std::vector<double>& v) {
@@ -80,6 +80,7 @@ RunTotals totals(const std::vector<double>& v) {
   t.max_reconstruction_kkt = v[4], t.max_violation = v[5], t.max_active = static_cast<int>(v[6]);
   t.dissipated = v[7], t.wall_seconds = v[8], t.fields_seconds = v[9], t.data_work = v[10];
   t.friction_work = v.size() > 11 ? v[11] : 0.0;  // (checkpoints written before friction have 11)
+  if (v.size() > 13) t.reconstruction_seconds = v[12], t.reconstruction_iterations = v[13];  // (before its cost, 12)
   return t;
 }
 
@@ -159,7 +160,7 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::strin
   const std::vector<double>& drift = numbers(r, "drift", 2, file);
   c.drift_abs = drift[0], c.drift_half_sum = drift[1];
   const std::vector<double>& t = numbers(r, "totals", 0, file);
-  if (t.size() != 11 && t.size() != 12)
+  if (t.size() != 11 && t.size() != 12 && t.size() != 14)
     throw InputError(file.string() + ": not a valid checkpoint: record 'totals' of the wrong size");
   c.totals = totals(t);
   for (auto [name, mark] :

@@ -57,6 +57,7 @@ std::optional<JournalMark> mark(const std::optional<HistoryMemory>& m, JournalMa
 History::History(const Simulation& sim, const std::filesystem::path& out, const std::filesystem::path& journal_dir,
                  const std::optional<HistoryMemory>& resume)
     : sim_(sim),
+      reconstructed_(sim.scheme->full_steps() == FullSteps::Reconstructed),
       damped_(sim.spec.time.parameters.damping.active()),
       data_in_t_(sim.data_in_t),
       friction_(sim.with_friction),
@@ -69,6 +70,7 @@ History::History(const Simulation& sim, const std::filesystem::path& out, const 
   }
   std::ostringstream csv;  // the header (a resumed run has it among the rows taken back)
   csv << "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s,step_s";
+  if (reconstructed_) csv << ",reconstruction_s";
   if (damped_) csv << ",dissipated";
   if (sim.components > 1) {
     momentum_.emplace(sim.problem);
@@ -95,6 +97,7 @@ void History::record(int step, const State& s, const StepStats& st, double step_
   std::ostream& csv = csv_.rows();
   csv << step << "," << s.t << "," << E.kinetic << "," << E.potential << "," << E.total() << "," << st.active << ","
       << st.qp_iterations << "," << st.qp_seconds << "," << step_seconds;
+  if (reconstructed_) csv << "," << st.reconstruction_seconds;
   if (damped_) csv << "," << works.dissipated;
   const ConstrainedProblem& p = sim_.problem;
   const Eigen::VectorXd U_full = p.full(s.U);

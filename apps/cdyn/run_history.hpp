@@ -61,6 +61,7 @@ class History {
 
  private:
   const Simulation& sim_;
+  bool reconstructed_;  // the column `reconstruction_s` (the scheme reconstructs its full steps, eq. 14)
   bool damped_;    // the column `dissipated`
   bool data_in_t_;  // the column `data_work`
   bool friction_;   // the column `friction_work`, and contact.csv's friction columns

@@ -50,6 +50,7 @@ class EnergyDrift {
 // checkpoint.
 struct RunTotals {
   double qp_iterations = 0, qp_seconds = 0, energy_iterations = 0;
+  double reconstruction_seconds = 0, reconstruction_iterations = 0;  // the full-step reconstruction's (eq. 14)
   double max_kkt = 0, max_reconstruction_kkt = 0, max_violation = 0;
   int max_active = 0;
   double dissipated = 0;       // W_d, the work of the Rayleigh damping from t = 0
@@ -62,6 +63,8 @@ struct RunTotals {
     qp_iterations += st.qp_iterations;
     qp_seconds += st.qp_seconds;
     energy_iterations += st.energy_iterations;
+    reconstruction_seconds += st.reconstruction_seconds;
+    reconstruction_iterations += st.reconstruction_iterations;
     max_kkt = std::max(max_kkt, st.kkt_residual);
     max_reconstruction_kkt = std::max(max_reconstruction_kkt, st.reconstruction_kkt);
     max_violation = std::max(max_violation, violation);

@@ -70,7 +70,11 @@ nlohmann::ordered_json run_summary(const RunOutcome& r) {
   j["qp_s_per_step"] = totals.qp_seconds / per;
   j["qp_iters_mean"] = totals.qp_iterations / per;
   if (totals.energy_iterations > 0) j["energy_iters_mean"] = totals.energy_iterations / per;  // discrete_gradient
-  if (sim.scheme->full_steps() == FullSteps::Reconstructed) j["reconstruction_kkt_max"] = totals.max_reconstruction_kkt;
+  if (sim.scheme->full_steps() == FullSteps::Reconstructed) {
+    j["reconstruction_s_per_step"] = totals.reconstruction_seconds / per;  // (part of s_per_step, not of qp_s_per_step)
+    j["reconstruction_iters_mean"] = totals.reconstruction_iterations / per;
+    j["reconstruction_kkt_max"] = totals.max_reconstruction_kkt;
+  }
   j["kkt_residual_max"] = totals.max_kkt;
   j["fields_s"] = totals.fields_seconds;
   if (r.u_exact) j["error_exact"] = l2_error_at(sim, *r.u_exact, r.state);  // ‖u_h(T) − u(T)‖_L2

@@ -8,6 +8,7 @@
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
 #include "cdyn/base/plugin.hpp"
+#include "cdyn/base/scope_timer.hpp"
 #include "cdyn/base/sparse.hpp"
 // mesh/
 #include "cdyn/mesh/cell_geometry.hpp"

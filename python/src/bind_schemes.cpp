@@ -51,6 +51,9 @@ void bind_schemes(py::module_& m) {
       .def_readonly("kkt_residual", &StepStats::kkt_residual)
       .def_readonly("converged", &StepStats::converged)
       .def_readonly("reconstruction_kkt", &StepStats::reconstruction_kkt)
+      .def_readonly("reconstruction_seconds", &StepStats::reconstruction_seconds,
+                    "the full-step reconstruction's seconds (eq. 14), a part of the step besides qp_seconds")
+      .def_readonly("reconstruction_iterations", &StepStats::reconstruction_iterations)
       .def_readonly("energy_iterations", &StepStats::energy_iterations)
       .def_readonly("dissipated", &StepStats::dissipated, "the Rayleigh damping's work over the step, W_d ≥ 0");
 

@@ -13,7 +13,8 @@ import cdyn
 
 # What differs from run to run: the clocks (step_s: a history column on main since the
 # work of data in t) and the bytes written (history.csv holds the clocks).
-TIMINGS = {"solve_s", "step_s", "setup_s", "wall_s", "s_per_step", "qp_s_per_step", "fields_s", "written"}
+TIMINGS = {"solve_s", "step_s", "reconstruction_s", "setup_s", "wall_s", "s_per_step", "qp_s_per_step",
+           "reconstruction_s_per_step", "fields_s", "written"}
 SMALL = ["mesh.n=8", "time.T=0.4"]
 
 

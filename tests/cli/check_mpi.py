@@ -59,7 +59,7 @@ from cli_helpers import QUIET, check, failures  # noqa: E402
 
 cdyn, mpiexec, src, work = sys.argv[1:5]
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
-TIMING = {"step", "t", "solve_s", "step_s", "qp_iters"}
+TIMING = {"step", "t", "solve_s", "step_s", "reconstruction_s", "qp_iters"}
 SCENES = {
     "membrane": ["", "time.T=0.3"],
     "disk": [os.path.join(src, "data/scenes/disk.toml"), "time.T=2e-3"],

@@ -93,6 +93,19 @@ assert s["wellposed"]["satisfied"] is True and s["wellposed"]["beta"] > 0
 assert {"u@centre", "v@centre", "lambda@centre"} <= set(rows[0])
 assert list(rows[0])[:8] == "step,t,E_kin,E_pot,E_total,active,qp_iters,solve_s".split(","), list(rows[0])
 
+# The midpoint rule reconstructs its full steps (eq. 14): the reconstruction's cost is a
+# part of each step besides the step QP, so solve_s + reconstruction_s <= step_s (three
+# timers of one process, the last around the other two; printed with 17 digits), and
+# each reconstruction solves its QP at least once; summary.json's figures are the
+# column's mean and the QP iterations a step.
+steps = rows[1:]
+assert list(rows[0])[8:10] == ["step_s", "reconstruction_s"], list(rows[0])
+for r in steps:
+    solve, rec, step = float(r["solve_s"]), float(r["reconstruction_s"]), float(r["step_s"])
+    assert 0 < rec and solve + rec <= step, (r["step"], solve, rec, step)
+assert close(s["reconstruction_s_per_step"], sum(float(r["reconstruction_s"]) for r in steps) / len(steps), 1e-12)
+assert s["reconstruction_iters_mean"] >= 1 and s["full_steps"] == "reconstructed", s
+
 # The scene.toml written next to the results reruns the same run.
 rerun_rows, rerun, _ = run(os.path.join(work, "run_rerun"), scene=os.path.join(out, "scene.toml"))
 assert rerun["n_dofs"] == s["n_dofs"] and rerun["n_steps"] == s["n_steps"] and rerun["E_final"] == s["E_final"]
@@ -114,6 +127,8 @@ out = os.path.join(work, "run_backward_euler")
 rows, s, _ = run(out, f"mesh.n={n}", "time.T=0.1", "time.dt=0.002", "time.scheme=backward_euler",
                  "output.fields=false", "output.plots=false")
 assert s["scheme"] == "backward_euler" and s["n_steps"] == 50
+# (backward Euler constrains U^{n+1} itself: no reconstruction, no column, no figure)
+assert s["full_steps"] == "solved" and "reconstruction_s" not in rows[0] and "reconstruction_s_per_step" not in s
 E = [float(r["E_total"]) for r in rows]
 assert all(b <= a + 1e-13 * abs(E[0]) for a, b in zip(E, E[1:])), "backward Euler increased the energy"
 assert E[-1] < E[0]

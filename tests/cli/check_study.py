@@ -113,7 +113,7 @@ header, rows, _ = study(out, "--vary", "time.dt=0.004,0.002", *probes)
 assert [r["error_measure"] for r in rows] == ["probe:zeta:u"] * 2, rows
 with open(os.path.join(out, "run_000", "history.csv")) as f:
     columns = f.readline().strip().split(",")
-assert columns[9:] == ["u@zeta", "v@zeta", "lambda@zeta", "u@alpha", "v@alpha", "lambda@alpha"], columns
+assert [c for c in columns if "@" in c] == ["u@zeta", "v@zeta", "lambda@zeta", "u@alpha", "v@alpha", "lambda@alpha"], columns
 e = history_error(history(os.path.join(out, "run_000")), history(os.path.join(out, "run_001")), ["u@zeta"])
 assert abs(float(rows[0]["error"]) - e) <= 1e-9 * e, (rows[0], e)
 header, rows, _ = study(out, "--vary", "time.dt=0.004,0.002", "--error", "probe:alpha:v", *probes)

@@ -7,7 +7,7 @@ Usage: check_threads.py CDYN SOURCE_DIR WORKDIR
  1. The seed's membrane at n = 80 through its impact (T = 0.3: 300 steps, the impact at
     step ≈ 258), P1+/P0 midpoint and P1/P1 backward Euler — large enough for the
     kernel's loops to run in parallel — with solver.threads = 1 and = 2: history.csv's
-    rows equal, every column but the timings `solve_s`, `step_s` as text (17 digits:
+    rows equal, every column but the timings `solve_s`, `step_s`, `reconstruction_s` as text (17 digits:
     bit for bit); summary.json's `threads` is the key's value, and `blas_threads` (the
     BLAS's own count, which the key leaves alone) the same in both.
  2. Without the key the count is the environment's: OMP_NUM_THREADS = 1 and = 2 give
@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_helpers import QUIET, check, failures  # noqa: E402
 
 cdyn, src, work = sys.argv[1:4]
-TIMING = {"solve_s", "step_s"}
+TIMING = {"solve_s", "step_s", "reconstruction_s"}
 METHODS = {"P1+/P0 midpoint": ["method.pair=P1+/P0", "time.scheme=midpoint"],
            "P1/P1 backward_euler": ["method.pair=P1/P1", "time.scheme=backward_euler"]}
 IMPACT = ["mesh.n=80", "time.T=0.3"]

@@ -12,7 +12,8 @@
 //  (iii) midpoint with reconstruction: the full steps are feasible to the QP tolerance
 //        (the extrapolation alone leaves them below the obstacle by up to 17 % of the
 //        initial height), and J is conserved to round-off on every step whose active
-//        set does not switch;
+//        set does not switch; each step reports its reconstruction's QP iterations and
+//        seconds, none without one (P1/P1);
 //  (iv)  discrete_gradient conserves J through impacts (membrane with P1+/P0, P2/P1 and
 //        P1+/P1, bars with P1+/P0 and the redistributed mass, an elastic block), is
 //        midpoint without contact, finds its energy correction with two or three step
@@ -22,6 +23,7 @@
 
 #include <Eigen/QR>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -284,6 +286,38 @@ TEST(FullSteps, ReconstructedMidpointConservesEnergyBetweenSwitches) {
   EXPECT_GT(quiet_in_contact, 10);
   EXPECT_LE(worst_quiet, 1e-12);
   EXPECT_GT(worst_switch, 1e-8);  // the switching steps are where the midpoint errs
+}
+
+TEST(FullSteps, AStepReportsItsReconstructionsCost) {
+  // StepStats carries what the step's reconstructions cost (history.csv's
+  // reconstruction_s): their QP iterations, at least one a reconstruction, so at least
+  // one a midpoint step and one a discrete_gradient energy iteration (on_line's
+  // interpolates solve none); their seconds, which the step's time contains besides the
+  // step QPs' own.  A scheme without reconstruction reports none.
+  for (const std::string name : {"midpoint", "discrete_gradient"}) {
+    MembraneRun run(8, name, 0.005);
+    int contact_steps = 0;
+    for (int n = 0; n < 60; ++n) {
+      const auto start = std::chrono::steady_clock::now();
+      const StepStats st = run.scheme->step(run.s);
+      const double step = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      contact_steps += st.active > 0;
+      EXPECT_GE(st.reconstruction_iterations, name == "midpoint" ? 1 : st.energy_iterations) << name << " step " << n;
+      EXPECT_GT(st.reconstruction_seconds, 0.0) << name << " step " << n;
+      EXPECT_LE(st.qp_seconds + st.reconstruction_seconds, step) << name << " step " << n;
+    }
+    EXPECT_GT(contact_steps, 10) << name;  // (the membrane meets the obstacle in the window)
+  }
+  const Mesh mesh = unit_square_mesh(8);
+  const ConstrainedProblem p = membrane(mesh, {Element::P1, "P1"}, true);
+  auto solver = make_step_solver("pdas", tight());
+  auto scheme = make_time_scheme("midpoint", p, *solver, 0.005, tight_scheme());
+  State s = initial_state(p);
+  for (int n = 0; n < 10; ++n) {
+    const StepStats st = scheme->step(s);
+    EXPECT_EQ(st.reconstruction_iterations, 0);
+    EXPECT_EQ(st.reconstruction_seconds, 0.0);
+  }
 }
 
 TEST(DiscreteGradient, ConservesEnergyThroughImpacts) {

@@ -203,6 +203,8 @@ class DiscreteGradient final : public StepQPScheme {
       double kkt = 0.0;
       it.W1 = full_step_(it.U1, t1, &kkt);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);
+      stats.reconstruction_seconds += full_step_.last_cost().seconds;
+      stats.reconstruction_iterations += full_step_.last_cost().qp_iterations;
       it.reaction = trial_state.reaction;
       if (d) keep_points(it);  // (β = 0's, only when the step switches: below)
       evaluate(it);
@@ -235,6 +237,7 @@ class DiscreteGradient final : public StepQPScheme {
       double kkt = 0.0;
       std::optional<Eigen::VectorXd> W1 =
           full_step_.on_line(a.full_step, b.full_step, theta, it.U1, t1, &kkt, &it.full_step);
+      stats.reconstruction_seconds += full_step_.last_cost().seconds;
       if (!W1) return std::nullopt;
       stats.kkt_residual = std::max(stats.kkt_residual, qp.kkt_residual);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);

@@ -7,6 +7,7 @@
 
 #include "cdyn/base/error.hpp"
 #include "cdyn/base/format.hpp"
+#include "cdyn/base/scope_timer.hpp"
 #include "cdyn/linalg/parallel.hpp"
 #include "cdyn/qp/kkt.hpp"
 
@@ -133,10 +134,12 @@ Eigen::VectorXd FullStepReconstruction::operator()(const Eigen::VectorXd& U, dou
     throw InputError("scheme", "the massless displacements Ker B of " + p_.mass->name() +
                                    " cannot be reconstructed: a constrained unknown carries mass (condition (12) "
                                    "fails in local form)");
-  if (!needed()) {
+  cost_ = Cost{};
+  if (!needed()) {  // (Ker B = {0}: nothing done, nothing to count)
     if (kkt) *kkt = 0.0;
     return U;
   }
+  const ScopeTimer timer(cost_.seconds);
   return method_ == Method::LocalBasis ? by_local_basis(U, t, kkt) : by_multipliers(U, t, kkt);
 }
 
@@ -157,6 +160,7 @@ Eigen::VectorXd FullStepReconstruction::by_local_basis(const Eigen::VectorXd& U,
   qp_.r = std::move(r);
   last_ = solver_->solve(qp_, has_last_ ? &last_ : nullptr);
   has_last_ = true;
+  cost_.qp_iterations = last_.iterations;
   SX_ = last_.reaction + qp_.r;  // S X (the reaction is S X − r)
   if (kkt) *kkt = last_.kkt_residual;
   return evaluated(U + transpose_times(Zt_, last_.X));
@@ -170,8 +174,10 @@ FullStepReconstruction::Point FullStepReconstruction::last_point() const {
 std::optional<Eigen::VectorXd> FullStepReconstruction::on_line(const Point& a, const Point& b, double theta,
                                                                const Eigen::VectorXd& U, double t, double* kkt,
                                                                Point* at) {
+  cost_ = Cost{};
   if (method_ != Method::LocalBasis || !needed() || a.y.size() != qp_.size() || b.y.size() != qp_.size())
     return std::nullopt;
+  const ScopeTimer timer(cost_.seconds);
   auto along = [theta](const Eigen::VectorXd& p, const Eigen::VectorXd& q) {
     return Eigen::VectorXd(p + theta * (q - p));
   };
@@ -209,6 +215,7 @@ Eigen::VectorXd FullStepReconstruction::by_multipliers(const Eigen::VectorXd& U,
     last_ = solver_->solve(qp_, has_last_ ? &last_ : nullptr);
     has_last_ = true;
     ++iterations_;
+    cost_.qp_iterations += last_.iterations;
     const Eigen::VectorXd y = p_.mass->velocity(last_.X);  // C⁻¹ B D
     mu_ -= rho_ * y;
     const double previous = residual;

@@ -100,6 +100,13 @@ class FullStepReconstruction {
 
   // Method of multipliers iterations (step QPs) of the last call.
   int iterations() const { return iterations_; }
+  // What the last call (of operator() or on_line) cost: its seconds, and the
+  // iterations of its QP solves (all of them by multipliers; none on a line).
+  struct Cost {
+    double seconds = 0.0;
+    int qp_iterations = 0;
+  };
+  const Cost& last_cost() const { return cost_; }
 
   // Its warm start into a scheme's memory, and back (clearing its solver's caches:
   // schemes/scheme_memory.hpp).
@@ -133,6 +140,7 @@ class FullStepReconstruction {
   std::vector<int> all_unknowns_;
   Eigen::VectorXd A_diagonal_;
   int iterations_ = 0;
+  Cost cost_;
 };
 
 }  // namespace cdyn

@@ -101,7 +101,13 @@ class Midpoint final : public StepQPScheme {
     if (alpha > 0.0 || beta > 0.0) stats.dissipated = damping_work(U1 - s.U, dt_);
     s.V = evaluated(2.0 * p_.mass->velocity(evaluated(c * (U1 - s.U))) - s.V);
     s.t += dt_;
-    s.U = full_step_ ? (*full_step_)(U1, s.t, &stats.reconstruction_kkt) : U1;
+    if (!full_step_) {
+      s.U = U1;
+      return stats;
+    }
+    s.U = (*full_step_)(U1, s.t, &stats.reconstruction_kkt);
+    stats.reconstruction_seconds = full_step_->last_cost().seconds;
+    stats.reconstruction_iterations = full_step_->last_cost().qp_iterations;
     return stats;
   }
 

@@ -50,6 +50,10 @@ struct StepStats {
   // The full-step reconstruction of eq. (14) (schemes/full_step.hpp), when the scheme
   // makes one: its QP's KKT residual, and the energy corrections of discrete_gradient.
   double reconstruction_kkt = 0.0;
+  // Its cost: the seconds of the step's reconstructions (right-hand side, QP, W), which
+  // step_s includes and qp_seconds does not, and the iterations of their QP solves.
+  double reconstruction_seconds = 0.0;
+  int reconstruction_iterations = 0;
   int energy_iterations = 0;  // discrete_gradient: step QPs solved (1 without a switch)
   int substeps = 0;           // discrete_gradient: halvings of dt at a stiff switch
   // The step's work of the data in t on the body (a load L(t), a moving obstacle;

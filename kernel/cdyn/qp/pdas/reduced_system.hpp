@@ -19,10 +19,10 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <chrono>
 #include <string>
 #include <vector>
 
+#include "cdyn/base/scope_timer.hpp"
 #include "cdyn/qp/bound_qp.hpp"
 #include "cdyn/qp/quadratic_form.hpp"
 
@@ -47,17 +47,6 @@ struct PDASCounters {
 
 // held[i] ≠ 0: unknown i is held at a bound (it is in the active set A).
 using HeldSet = std::vector<char>;
-
-// Adds the wall time of its scope to a counter (PDASCounters' *_s).
-class ScopeTimer {
- public:
-  explicit ScopeTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
-  ~ScopeTimer() { seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-
- private:
-  double& seconds_;
-  std::chrono::steady_clock::time_point start_;
-};
 
 // How accurately an inexact (CG) solve of the reduced system is asked for: a bound on
 // the Jacobi-scaled residual max_{i∉A} |b̃ − S̃X|_i / S_ii, which on the free unknowns is
