@@ -18,12 +18,15 @@ Regimes (each a scene and a window of steps):
 Each (regime, method) runs R times with and R times without the obstacle, alternated,
 so that both see the same machine; the figure is the ratio of the means over the window
 of history.csv's step_s (the whole step: QP, update, reconstruction), averaged over the
-repetitions — the mean, not the median: the slow steps are the point. One core
-(OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), fields and plots off, every run on the same
-CPU (--cpu, by default the first this process may use): the cores of a virtual machine
-need not be equally fast (docs/performance.md, "Both cores": the second core of the
-2-core machine ran the linear impact window 1.2–2.2 times slower than the first), and a
-contact run on one with its linear run on the other gave ratios of 0.8 to 1.7.
+repetitions — the mean, not the median: the slow steps are the point.  Beside it, the
+same means of the step QP's part (solve_s) and of the full-step reconstruction's
+(reconstruction_s, the midpoint rule's eq. 14 for P1+/P0), contact / linear: where the
+overhead is.  One core (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), fields and plots
+off, every run on the same CPU (--cpu, by default the first this process may use): the
+cores of a virtual machine need not be equally fast (docs/performance.md, "Both cores":
+the second core of the 2-core machine ran the linear impact window 1.2–2.2 times slower
+than the first), and a contact run on one with its linear run on the other gave ratios
+of 0.8 to 1.7.
 """
 import argparse
 import csv
@@ -66,10 +69,17 @@ def window_of(rows, window):
     return (min(steps), max(steps) + 1)
 
 
-def mean_step(rows, window):
+def mean_step(rows, window, column="step_s"):
+    """The mean of a column over the window (0 for a column the run does not write)."""
     a, b = window
-    times = [float(r["step_s"]) for r in rows if a <= int(r["step"]) <= b]
+    times = [float(r.get(column, 0.0)) for r in rows if a <= int(r["step"]) <= b]
     return sum(times) / len(times)
+
+
+def parts(rows, window):
+    """The step's mean and two of its parts: the step QP (solve_s) and the full-step
+    reconstruction (reconstruction_s, P1+/P0 midpoint's eq. 14)."""
+    return [mean_step(rows, window, c) for c in ("step_s", "solve_s", "reconstruction_s")]
 
 
 def main():
@@ -86,7 +96,8 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     table = []
     print(f"{'regime':9} {'method':22} {'window':>9} {'contact ms':>10} {'linear ms':>9} {'ratio':>6} "
-          f"{'max active':>10} {'unknowns':>8}  (mean over the window, {a.repeat} repetitions, CPU {a.cpu})")
+          f"{'max active':>10} {'unknowns':>8} {'QP ms c/l':>13} {'rec. ms c/l':>13}  "
+          f"(mean over the window, {a.repeat} repetitions, CPU {a.cpu})")
     for name, (scene_file, sets, window) in REGIMES.items():
         if name not in only:
             continue
@@ -97,16 +108,19 @@ def main():
                 out = os.path.join(a.out, f"{name}_{method.split()[0].replace('/', '_')}")
                 rows, s = run(a.cdyn, scene, out + "_contact", sets + msets)
                 w = window_of(rows, window)
-                contact.append(mean_step(rows, w))
+                contact.append(parts(rows, w))
                 active = max(active, s["max_active"])
                 unknowns = s["n_free"]
                 rows, _ = run(a.cdyn, scene, out + "_linear", sets + msets + ["obstacle.enabled=false"])
-                linear.append(mean_step(rows, w))
-            c, l = sum(contact) / len(contact), sum(linear) / len(linear)
-            table.append({"regime": name, "method": method, "window": list(w), "contact_ms": 1e3 * c,
-                          "linear_ms": 1e3 * l, "ratio": c / l, "max_active": active, "unknowns": unknowns})
-            print(f"{name:9} {method:22} {w[0]:>4}-{w[1]:<4} {1e3 * c:10.3f} {1e3 * l:9.3f} {c / l:6.2f} "
-                  f"{active:10d} {unknowns:8d}", flush=True)
+                linear.append(parts(rows, w))
+            # (step, QP, reconstruction) in ms, each the mean over the repetitions
+            (c, cq, cr), (l, lq, lr) = [[1e3 * sum(p[j] for p in runs) / len(runs) for j in range(3)]
+                                        for runs in (contact, linear)]
+            table.append({"regime": name, "method": method, "window": list(w), "contact_ms": c, "linear_ms": l,
+                          "ratio": c / l, "max_active": active, "unknowns": unknowns, "contact_qp_ms": cq,
+                          "linear_qp_ms": lq, "contact_reconstruction_ms": cr, "linear_reconstruction_ms": lr})
+            print(f"{name:9} {method:22} {w[0]:>4}-{w[1]:<4} {c:10.3f} {l:9.3f} {c / l:6.2f} "
+                  f"{active:10d} {unknowns:8d} {cq:6.3f}/{lq:6.3f} {cr:6.3f}/{lr:6.3f}", flush=True)
     with open(os.path.join(a.out, "regimes.json"), "w") as f:
         json.dump(table, f, indent=1)
     worst = max(r["ratio"] for r in table)
