@@ -79,8 +79,8 @@ RunTotals totals(const std::vector<double>& v) {
   t.qp_iterations = v[0], t.qp_seconds = v[1], t.energy_iterations = v[2], t.max_kkt = v[3];
   t.max_reconstruction_kkt = v[4], t.max_violation = v[5], t.max_active = static_cast<int>(v[6]);
   t.dissipated = v[7], t.wall_seconds = v[8], t.fields_seconds = v[9], t.data_work = v[10];
-  t.friction_work = v.size() > 11 ? v[11] : 0.0;  // (checkpoints written before friction have 11)
-  if (v.size() > 13) t.reconstruction_seconds = v[12], t.reconstruction_iterations = v[13];  // (before its cost, 12)
+  t.friction_work = v[11];
+  t.reconstruction_seconds = v[12], t.reconstruction_iterations = v[13];
   return t;
 }
 
@@ -159,10 +159,7 @@ RunCheckpoint read_checkpoint(const std::filesystem::path& out, const std::strin
   c.E_initial = {E[0], E[1]};
   const std::vector<double>& drift = numbers(r, "drift", 2, file);
   c.drift_abs = drift[0], c.drift_half_sum = drift[1];
-  const std::vector<double>& t = numbers(r, "totals", 0, file);
-  if (t.size() != 11 && t.size() != 12 && t.size() != 14)
-    throw InputError(file.string() + ": not a valid checkpoint: record 'totals' of the wrong size");
-  c.totals = totals(t);
+  c.totals = totals(numbers(r, "totals", 14, file));
   for (auto [name, mark] :
        {std::pair{"journal.history", &c.history.history}, std::pair{"journal.contact", &c.history.contact}}) {
     const std::vector<std::int64_t>& m = integers(name, 2);
