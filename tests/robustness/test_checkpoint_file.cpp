@@ -98,8 +98,12 @@ TEST(CheckpointFile, CorruptionIsRefused) {
   for (std::size_t n : {std::size_t(0), std::size_t(5), std::size_t(20), good.size() - 1})
     refused(good.substr(0, n), "cut at " + std::to_string(n));
   std::string other = good;
-  other[8] = 2;  // version 2 (little-endian machines; on others byte 8 is the high byte: still not 1)
-  refused(other, "another version");
+  // Byte 8 is the version's low byte on little-endian machines (on others its high byte:
+  // still another version than this cdyn's).
+  other[8] = static_cast<char>(kCheckpointVersion + 1);
+  refused(other, "a later version");
+  other[8] = 1;  // version 1: before history.csv's reconstruction_s column
+  refused(other, "version 1");
   EXPECT_THROW(read_checkpoint_file(scratch("missing.bin")), InputError);
 }
 
