@@ -186,6 +186,11 @@ class DiscreteGradient final : public StepQPScheme {
       it.qp = last_point();
       it.full_step = full_step_.last_point();
     };
+    // The last reconstruction's cost, added to the step's (a point on a line solves no QP).
+    auto count_reconstruction = [&]() {
+      stats.reconstruction_seconds += full_step_.last_cost().seconds;
+      stats.reconstruction_iterations += full_step_.last_cost().qp_iterations;
+    };
     // to_round_off: the solve by a factorization, not by CG to the QP tolerance (below).
     auto iterate = [&](double beta, const Eigen::VectorXd* d, bool to_round_off) {
       StepStats qp;
@@ -203,8 +208,7 @@ class DiscreteGradient final : public StepQPScheme {
       double kkt = 0.0;
       it.W1 = full_step_(it.U1, t1, &kkt);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);
-      stats.reconstruction_seconds += full_step_.last_cost().seconds;
-      stats.reconstruction_iterations += full_step_.last_cost().qp_iterations;
+      count_reconstruction();
       it.reaction = trial_state.reaction;
       if (d) keep_points(it);  // (β = 0's, only when the step switches: below)
       evaluate(it);
@@ -237,7 +241,7 @@ class DiscreteGradient final : public StepQPScheme {
       double kkt = 0.0;
       std::optional<Eigen::VectorXd> W1 =
           full_step_.on_line(a.full_step, b.full_step, theta, it.U1, t1, &kkt, &it.full_step);
-      stats.reconstruction_seconds += full_step_.last_cost().seconds;
+      count_reconstruction();
       if (!W1) return std::nullopt;
       stats.kkt_residual = std::max(stats.kkt_residual, qp.kkt_residual);
       stats.reconstruction_kkt = std::max(stats.reconstruction_kkt, kkt);
