@@ -704,6 +704,48 @@ TEST(QPSolvers, PdasReusesItsFactorizationAcrossCalls) {
   EXPECT_EQ(pdas.counters().analyses, 1);
 }
 
+// BoundQP::matrices_id: matrices named as the last call's are taken as they were, unread;
+// matrices renamed or unnamed are compared with the last call's (new when they differ).
+TEST(QPChecks, MatricesNamedAsTheLastCallsAreTakenAsUnchanged) {
+  BoundQP qp = random_problem(6, 6, 43, false);
+  qp.matrices_id = cdyn::new_matrices_id();
+  cdyn::CheckedMatrices checked;
+  EXPECT_TRUE(checked.check(qp, true, "test"));
+  EXPECT_FALSE(checked.check(qp, true, "test"));
+  qp.S *= 2.0;  // in place, under the same name: the owner broke the contract, unseen
+  EXPECT_FALSE(checked.check(qp, true, "test"));
+  qp.matrices_id = cdyn::new_matrices_id();  // renamed: read, and new
+  EXPECT_TRUE(checked.check(qp, true, "test"));
+  qp.matrices_id = cdyn::new_matrices_id();  // renamed, the same values: read, not new
+  EXPECT_FALSE(checked.check(qp, true, "test"));
+  qp.matrices_id = 0;  // unnamed: read at every call
+  EXPECT_FALSE(checked.check(qp, true, "test"));
+  qp.S *= 0.5;
+  EXPECT_TRUE(checked.check(qp, true, "test"));
+  // matrices that fail the checks are not named: the next call reads them again
+  BoundQP bad = qp;
+  bad.matrices_id = cdyn::new_matrices_id();
+  bad.S.coeffRef(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(checked.check(bad, true, "test"), cdyn::InputError);
+  EXPECT_THROW(checked.check(bad, true, "test"), cdyn::InputError);
+}
+
+// A step solver given renamed matrices solves with them: PDAS factorizes again.
+TEST(QPSolvers, PdasSolvesRenamedMatricesWithANewFactor) {
+  BoundQP qp = random_problem(12, 12, 43, false);
+  qp.matrices_id = cdyn::new_matrices_id();
+  cdyn::PDASSolver pdas;
+  const QPResult first = pdas.solve(qp);
+  const int factorizations = pdas.counters().factorizations;
+  pdas.solve(qp, &first);
+  EXPECT_EQ(pdas.counters().factorizations, factorizations);
+  qp.S *= 2.0;
+  qp.matrices_id = cdyn::new_matrices_id();
+  const QPResult renamed = pdas.solve(qp, &first);
+  EXPECT_GT(pdas.counters().factorizations, factorizations);
+  expect_kkt(qp, renamed, 1e-10, "pdas, renamed");
+}
+
 // ----- saddle form -----------------------------------------------------------------------
 
 // A small saddle form: A = 1D Laplacian (n), B random sparse (m × n), C SPD tridiagonal;

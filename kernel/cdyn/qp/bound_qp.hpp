@@ -23,6 +23,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <atomic>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,9 +39,22 @@ struct BoundQP {
   SparseMatrix S;
   std::optional<SaddleForm> saddle;
   Eigen::VectorXd r, lower, upper;
+  // The name of the matrices (S, or saddle's A, B, C and c), given by the one who keeps
+  // this QP across calls: a number from new_matrices_id(), renewed whenever it changes
+  // them.  A solver that saw the same nonzero name at its last call takes the matrices as
+  // unchanged without reading them — in a time loop, comparing S with the solver's copy
+  // read every stored entry twice per solve, a pass over S as long as a product with it
+  // (PETSc names its objects' states the same way).  0: unnamed, compared entry by entry.
+  std::uint64_t matrices_id = 0;
 
   int size() const { return static_cast<int>(r.size()); }
 };
+
+// A name for matrices never given before in this process (BoundQP::matrices_id).
+inline std::uint64_t new_matrices_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
 
 struct QPOptions {
   double tol = 1e-10;          // on kkt_residual, the same for every solver

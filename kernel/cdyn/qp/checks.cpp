@@ -132,7 +132,18 @@ void check_problem(const BoundQP& qp, bool matrices) {
   }
 }
 
+// The same nonzero name as the last call's, for matrices still stored where they were
+// (a QP whose S was reassigned without a new name is compared, not trusted).
+bool CheckedMatrices::named_as_last(const BoundQP& qp) const {
+  const double* values = qp.saddle ? qp.saddle->A.valuePtr() : qp.S.valuePtr();
+  return valid_ && qp.matrices_id != 0 && qp.matrices_id == id_ && values == values_;
+}
+
 bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std::string& solver) {
+  if (named_as_last(qp)) {
+    check_problem(qp, false);
+    return false;
+  }
   bool same = valid_;
   if (same && qp.saddle)
     same = S_.size() == 0 && qp.saddle->c == c_ && same_matrix(qp.saddle->A, A_) && same_matrix(qp.saddle->B, B_) &&
@@ -140,7 +151,14 @@ bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std
   else if (same)
     same = A_.size() == 0 && same_matrix(qp.S, S_);
   check_problem(qp, !same);
-  if (same) return false;
+  const auto name = [&] {  // (only matrices that passed the checks are named)
+    id_ = qp.matrices_id;
+    values_ = qp.saddle ? qp.saddle->A.valuePtr() : qp.S.valuePtr();
+  };
+  if (same) {
+    name();
+    return false;
+  }
   valid_ = false;
   if (qp.saddle) {
     A_ = qp.saddle->A;
@@ -155,6 +173,7 @@ bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std
   }
   for (SparseMatrix* M : {&S_, &A_, &B_, &C_}) M->makeCompressed();
   valid_ = true;
+  name();
   return true;
 }
 

@@ -66,6 +66,7 @@ FullStepReconstruction::FullStepReconstruction(const ConstrainedProblem& p, doub
   qp_.S = SparseMatrix(Z.transpose()) * (p.A * Z);
   qp_.S = 0.5 * (qp_.S + SparseMatrix(qp_.S.transpose()));  // exact symmetry
   qp_.S.makeCompressed();
+  qp_.matrices_id = new_matrices_id();
   D_ = scaling_diagonal(qp_);  // the D of pdas's own rule
   Zt_ = transposed(Z);
   const int m = static_cast<int>(Z.cols());
@@ -108,6 +109,7 @@ void FullStepReconstruction::prepare_multipliers() {
   form.B *= std::sqrt(rho_);
   form.c = 1.0;
   qp_.saddle = std::move(form);
+  qp_.matrices_id = new_matrices_id();
   qp_.lower.resize(p_.n_free());
   qp_.upper.resize(p_.n_free());
   all_unknowns_.resize(p_.n_free());

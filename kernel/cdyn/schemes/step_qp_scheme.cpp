@@ -43,6 +43,7 @@ void StepQPScheme::build(double a, double m) {
   if (!M_) {
     qp_.S = SparseMatrix();
     qp_.saddle = p_.mass->saddle(SparseMatrix(a_ * p_.A), k);
+    qp_.matrices_id = new_matrices_id();
     map_friction();
     tell_unknowns();
     return;
@@ -63,6 +64,7 @@ void StepQPScheme::build(double a, double m) {
       condensation_.emplace(std::move(c));
     }
   }
+  qp_.matrices_id = new_matrices_id();
   map_friction();
   tell_unknowns();
 }
@@ -155,6 +157,7 @@ void StepQPScheme::set_bounds(const Eigen::VectorXd& lower, const Eigen::VectorX
 
 void StepQPScheme::end_condensation() {
   qp_.S = condensation_->S();
+  qp_.matrices_id = new_matrices_id();
   qp_.lower = p_.lower;
   qp_.upper = p_.upper;
   condensation_.reset();
