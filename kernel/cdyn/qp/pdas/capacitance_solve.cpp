@@ -110,4 +110,29 @@ void CapacitanceSolve::solve(const SparseCholesky& chol, const Eigen::VectorXd& 
   for (int i : held_) y[i] = b[i];
 }
 
+void CapacitanceSolve::set_rhs(const SparseCholesky& chol, const Eigen::VectorXd& r) {
+  v0_ = r;
+  chol.forward(v0_);
+}
+
+void CapacitanceSolve::solve_held(const SparseCholesky& chol, const Eigen::VectorXd& g, Eigen::VectorXd& x) const {
+  const int h = static_cast<int>(held_.size());
+  mu_.resize(h);
+  for (int a = 0; a < h; ++a) {  // ν's right-hand side g_A − Wᵀ v₀
+    const Column& c = *held_columns_[a];
+    double sum = 0.0;
+    for (std::size_t p = 0; p < c.rows.size(); ++p) sum += c.values[p] * v0_[c.rows[p]];
+    mu_[a] = g[held_[a]] - sum;
+  }
+  K_.solveInPlace(mu_);
+  v_ = v0_;
+  for (int a = 0; a < h; ++a) {  // v₀ + W ν
+    const Column& c = *held_columns_[a];
+    for (std::size_t p = 0; p < c.rows.size(); ++p) v_[c.rows[p]] += c.values[p] * mu_[a];
+  }
+  chol.backward(v_);  // x = Pᵀ L⁻ᵀ (v₀ + W ν): x_A = g_A up to round-off
+  x = v_;
+  for (int i : held_) x[i] = g[i];
+}
+
 }  // namespace cdyn

@@ -52,6 +52,12 @@ class CapacitanceSolve {
   double stored_entries() const { return stored_; }  // of the columns kept (at most L's, solve_flops / 4)
   // y with y_A = b_A and S_II y_I = b_I for the held set A of the last hold().
   void solve(const SparseCholesky& chol, const Eigen::VectorXd& b, Eigen::VectorXd& y) const;
+  // The same system written with the QP's own r, for the iterates of one QP, which share
+  // r and differ in A and X_A = g_A: S x = r + E_A ν with K ν = g_A − Wᵀ v₀,
+  // v₀ = L⁻¹ P r made once (set_rhs), so x = Pᵀ L⁻ᵀ (v₀ + W ν) costs one backward sweep
+  // where solve() costs both.
+  void set_rhs(const SparseCholesky& chol, const Eigen::VectorXd& r);
+  void solve_held(const SparseCholesky& chol, const Eigen::VectorXd& g, Eigen::VectorXd& x) const;
 
  private:
   struct Column {
@@ -68,6 +74,7 @@ class CapacitanceSolve {
   bool ready_ = false;  // K_ is the factor of held_'s matrix
   Eigen::LLT<Eigen::MatrixXd> K_;
   mutable Eigen::VectorXd v_, mu_;
+  Eigen::VectorXd v0_;  // L⁻¹ P r of the last set_rhs
 };
 
 }  // namespace cdyn

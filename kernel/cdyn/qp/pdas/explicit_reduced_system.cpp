@@ -47,6 +47,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   // to sets that the next step left: N_X = 40, dt = 0.01, 2.02 → 1.83 its midpoint's
   // time, ten interleaved runs)
   if (!same_step_next_) ++calls_;
+  capacitance_has_r_ = false;  // (a new QP: its r)
   by_factor_ = same_step_next_ && round_off_next_;
   same_step_next_ = round_off_next_ = false;
   const bool ready = chol_.factorized() || (opt_.pdas_cg_only && cg_);
@@ -98,6 +99,7 @@ void ExplicitReducedSystem::refactorize(const HeldSet& held) {
 
 // The factor is a fresh one of `held`: no row update on it, and no CG since (CG mode off).
 void ExplicitReducedSystem::factor_made_for(const HeldSet& held) {
+  capacitance_has_r_ = false;  // (L⁻¹ P r was another factor's)
   factor_held_ = held;
   updates_since_factorization_ = 0;
   way_ = Way::Factor;
@@ -106,6 +108,7 @@ void ExplicitReducedSystem::factor_made_for(const HeldSet& held) {
 
 // chol_ is about to hold another factor than S's own: S's is kept (a copy) the first time.
 void ExplicitReducedSystem::leave_whole_factor() {
+  capacitance_has_r_ = false;
   if (whole_in_chol_ && !chol_.has_kept()) chol_.keep();
   whole_in_chol_ = false;
 }
@@ -228,12 +231,32 @@ const Eigen::VectorXd& ExplicitReducedSystem::solve_tilde(const Eigen::VectorXd&
 Eigen::VectorXd ExplicitReducedSystem::solve_fixed(const BoundQP& qp, const HeldSet& held,
                                                    const Eigen::VectorXd& value, double tol) {
   set_held(held);  // (a resumed solve's set too: the CG measured so far may now price the factor lower)
+  if (way_ == Way::Capacitance) return solve_by_capacitance(qp, value);
   if (!(resume_cg_ && last_by_cg_)) build_rhs(qp, held, value);  // (resumed: b̃ is the last one)
   const Eigen::VectorXd& y = solve_tilde(b_, tol);
   Eigen::VectorXd X(n_);  // y with X_A = value_A exactly
 #pragma omp parallel for schedule(static) if (2L * n_ >= kParallelWork)
   for (int i = 0; i < n_; ++i) X[i] = held[i] ? value[i] : y[i];
   return X;
+}
+
+// The minimizer with X_A = value_A by S's factor and the capacitance matrix, written
+// with the QP's r (capacitance_solve.hpp, solve_held): the forward sweep L⁻¹ P r is made
+// at the QP's first such iterate and serves the others, which cost a backward sweep each.
+// (The chattering membrane's few held unknowns switch at most steps: a second iterate
+// with the same r.)
+Eigen::VectorXd ExplicitReducedSystem::solve_by_capacitance(const BoundQP& qp, const Eigen::VectorXd& value) {
+  ++counters_.solves;
+  ++counters_.capacitance_solves;
+  last_cg_residual_ = 0.0;
+  resume_cg_ = last_by_cg_ = false;
+  ScopeTimer timer(counters_.solve_s);
+  if (!capacitance_has_r_) {
+    capacitance_.set_rhs(chol_, qp.r);
+    capacitance_has_r_ = true;
+  }
+  capacitance_.solve_held(chol_, value, y_last_);
+  return y_last_;
 }
 
 // b_ = b̃, the right-hand side of S̃ X = b̃ for `held` and the held values `value`.

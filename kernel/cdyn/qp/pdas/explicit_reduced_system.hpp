@@ -106,6 +106,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   void track_run(const HeldSet& held);
   const Eigen::VectorXd& solve_tilde(const Eigen::VectorXd& b, double cg_tol);  // into y_last_
   void build_rhs(const BoundQP& qp, const HeldSet& held, const Eigen::VectorXd& value);  // b̃, into b_
+  Eigen::VectorXd solve_by_capacitance(const BoundQP& qp, const Eigen::VectorXd& value);
 
   const QPOptions& opt_;
   PDASCounters& counters_;
@@ -137,6 +138,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool by_factor_ = false;                // this call's are (set_held)
   std::optional<MaskedCG> cg_;            // CG on S_ (its preconditioner, work vectors, last residual)
   CapacitanceSolve capacitance_;          // its columns (of chol_'s factor of S) and matrix
+  bool capacitance_has_r_ = false;        // it holds L⁻¹ P r for this QP's r (solve_by_capacitance)
   Eigen::VectorXd b_;                     // the last solve_fixed's b̃
   Eigen::VectorXd y_last_;                // the last solution of solve_tilde: CG's first guess
   double last_cg_residual_ = 0.0;         // CG's scaled residual in the last solve_tilde (0: by the factor)
