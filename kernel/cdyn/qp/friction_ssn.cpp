@@ -62,10 +62,13 @@ std::vector<Tangential> sets_of(const FrictionConditions& f, const Eigen::Vector
 
 // The Newton term of the slipping contacts in space (sets_of) added to S's tangential
 // blocks and to r (κ (I − σσᵀ) X̂_T) where this rank owns the unknowns, S's entries
-// restored by undo() (or when it goes out of scope).
+// restored by undo() (or when it goes out of scope).  S changed in place is renamed
+// (BoundQP::matrices_id) while the terms are in, and takes its name back with its
+// entries: the inner solver must not take it for the S it saw last.
 class DirectionTerms {
  public:
-  DirectionTerms(BoundQP& qp, const FrictionConditions& f, const std::vector<Tangential>& sets, const StepSolver& inner) {
+  DirectionTerms(BoundQP& qp, const FrictionConditions& f, const std::vector<Tangential>& sets, const StepSolver& inner)
+      : qp_(qp), id_(qp.matrices_id) {
     std::vector<std::size_t> taken;
     for (std::size_t k = 0; k < sets.size(); ++k)
       if (sets[k].kappa > 0.0 && inner.owns(f.contacts[k].tangential[0])) taken.push_back(k);
@@ -85,16 +88,21 @@ class DirectionTerms {
             qp.r[t[i]] += sets[k].kappa * P * f.reference[t[j]];
           }
       }
+    if (!saved_.empty()) qp.matrices_id = new_matrices_id();
   }
   ~DirectionTerms() { undo(); }
   DirectionTerms(const DirectionTerms&) = delete;
   DirectionTerms& operator=(const DirectionTerms&) = delete;
   void undo() {
+    if (saved_.empty()) return;
     for (const auto& [entry, value] : saved_) *entry = value;
     saved_.clear();
+    qp_.matrices_id = id_;
   }
 
  private:
+  BoundQP& qp_;
+  const std::uint64_t id_;  // S's name without the terms
   std::vector<std::pair<double*, double>> saved_;
 };
 
