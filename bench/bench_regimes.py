@@ -19,6 +19,8 @@ Each (regime, method) runs R times with and R times without the obstacle, altern
 so that both see the same machine; the figure is the ratio of the means over the window
 of history.csv's step_s (the whole step: QP, update, reconstruction), averaged over the
 repetitions — the mean, not the median: the slow steps are the point.  Beside it, the
+lowest and highest ratio of one repetition's pair (its contact run over the linear run
+next to it): how far the machine moved the figure while the table was made.  Then the
 same means of the step QP's part (solve_s) and of the full-step reconstruction's
 (reconstruction_s, the midpoint rule's eq. 14 for P1+/P0), contact / linear: where the
 overhead is.  One core (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1), fields and plots
@@ -96,7 +98,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     table = []
     print(f"{'regime':9} {'method':22} {'window':>9} {'contact ms':>10} {'linear ms':>9} {'ratio':>6} "
-          f"{'max active':>10} {'unknowns':>8} {'QP ms c/l':>13} {'rec. ms c/l':>13}  "
+          f"{'pairs':>9} {'max active':>10} {'unknowns':>8} {'QP ms c/l':>13} {'rec. ms c/l':>13}  "
           f"(mean over the window, {a.repeat} repetitions, CPU {a.cpu})")
     for name, (scene_file, sets, window) in REGIMES.items():
         if name not in only:
@@ -116,11 +118,12 @@ def main():
             # (step, QP, reconstruction) in ms, each the mean over the repetitions
             (c, cq, cr), (l, lq, lr) = [[1e3 * sum(p[j] for p in runs) / len(runs) for j in range(3)]
                                         for runs in (contact, linear)]
+            pairs = [cp[0] / lp[0] for cp, lp in zip(contact, linear)]  # (each repetition's step means)
             table.append({"regime": name, "method": method, "window": list(w), "contact_ms": c, "linear_ms": l,
-                          "ratio": c / l, "max_active": active, "unknowns": unknowns, "contact_qp_ms": cq,
+                          "ratio": c / l, "pair_ratios": pairs, "max_active": active, "unknowns": unknowns, "contact_qp_ms": cq,
                           "linear_qp_ms": lq, "contact_reconstruction_ms": cr, "linear_reconstruction_ms": lr})
             print(f"{name:9} {method:22} {w[0]:>4}-{w[1]:<4} {c:10.3f} {l:9.3f} {c / l:6.2f} "
-                  f"{active:10d} {unknowns:8d} {cq:6.3f}/{lq:6.3f} {cr:6.3f}/{lr:6.3f}", flush=True)
+                  f"{min(pairs):4.2f}-{max(pairs):4.2f} {active:10d} {unknowns:8d} {cq:6.3f}/{lq:6.3f} {cr:6.3f}/{lr:6.3f}", flush=True)
     with open(os.path.join(a.out, "regimes.json"), "w") as f:
         json.dump(table, f, indent=1)
     worst = max(r["ratio"] for r in table)
