@@ -42,20 +42,57 @@ struct Block {
 constexpr int kWide = 32;
 
 // Forward, one supernode: its diagonal block solved for its unknowns, then E_r = Σ_c L(row, c) x_c
-// for the rows below (E: ld − nc entries), to be subtracted from x_row.
+// for the rows below (E: ld − nc entries), to be subtracted from x_row.  The columns are
+// taken four at a time, each read once from its top to its bottom: the block's unknowns
+// below the four and E are updated by the four in column order, as four passes would
+// (the same bits), but each entry loaded and stored once instead of four times — a pass
+// per column made the sweep bound by those loads and stores, not by L's entries.
 void forward_supernode(const Block& b, double* xs, double* E) {
   const int m = b.ld - b.nc;
-  for (int c = 0; c < b.nc; ++c) {
-    const double* col = b.v + static_cast<long>(c) * b.ld;
+  const long ld = b.ld;
+  std::fill(E, E + m, 0.0);
+  int c = 0;
+  for (; c + 4 <= b.nc; c += 4) {
+    const double* c0 = b.v + c * ld;
+    const double *c1 = c0 + ld, *c2 = c1 + ld, *c3 = c2 + ld;
+    const double x0 = xs[c] / c0[c];  // (the 4 × 4 diagonal block, a column at a time)
+    xs[c] = x0;
+    xs[c + 1] -= c0[c + 1] * x0;
+    xs[c + 2] -= c0[c + 2] * x0;
+    xs[c + 3] -= c0[c + 3] * x0;
+    const double x1 = xs[c + 1] / c1[c + 1];
+    xs[c + 1] = x1;
+    xs[c + 2] -= c1[c + 2] * x1;
+    xs[c + 3] -= c1[c + 3] * x1;
+    const double x2 = xs[c + 2] / c2[c + 2];
+    xs[c + 2] = x2;
+    xs[c + 3] -= c2[c + 3] * x2;
+    const double x3 = xs[c + 3] / c3[c + 3];
+    xs[c + 3] = x3;
+    for (int r = c + 4; r < b.nc; ++r) {
+      double v = xs[r];
+      v -= c0[r] * x0;
+      v -= c1[r] * x1;
+      v -= c2[r] * x2;
+      v -= c3[r] * x3;
+      xs[r] = v;
+    }
+    for (int r = 0; r < m; ++r) {
+      const int k = b.nc + r;
+      double e = E[r];
+      e += c0[k] * x0;
+      e += c1[k] * x1;
+      e += c2[k] * x2;
+      e += c3[k] * x3;
+      E[r] = e;
+    }
+  }
+  for (; c < b.nc; ++c) {
+    const double* col = b.v + c * ld;
     const double xc = xs[c] / col[c];
     xs[c] = xc;
     for (int r = c + 1; r < b.nc; ++r) xs[r] -= col[r] * xc;
-  }
-  std::fill(E, E + m, 0.0);
-  for (int c = 0; c < b.nc; ++c) {
-    const double* col = b.v + static_cast<long>(c) * b.ld + b.nc;
-    const double xc = xs[c];
-    for (int r = 0; r < m; ++r) E[r] += col[r] * xc;
+    for (int r = 0; r < m; ++r) E[r] += col[b.nc + r] * xc;
   }
 }
 
