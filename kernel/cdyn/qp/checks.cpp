@@ -14,6 +14,9 @@ namespace cdyn {
 
 namespace {
 
+// Where the QP's S (or, in saddle form, A) keeps its values.
+const double* values_of(const BoundQP& qp) { return qp.saddle ? qp.saddle->A.valuePtr() : qp.S.valuePtr(); }
+
 void check_finite(const SparseMatrix& M, const std::string& what) {
   for (int j = 0; j < M.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(M, j); it; ++it)
@@ -135,8 +138,7 @@ void check_problem(const BoundQP& qp, bool matrices) {
 // The same nonzero name as the last call's, for matrices still stored where they were
 // (a QP whose S was reassigned without a new name is compared, not trusted).
 bool CheckedMatrices::named_as_last(const BoundQP& qp) const {
-  const double* values = qp.saddle ? qp.saddle->A.valuePtr() : qp.S.valuePtr();
-  return valid_ && qp.matrices_id != 0 && qp.matrices_id == id_ && values == values_;
+  return valid_ && qp.matrices_id != 0 && qp.matrices_id == id_ && values_of(qp) == values_;
 }
 
 bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std::string& solver) {
@@ -153,7 +155,7 @@ bool CheckedMatrices::check(const BoundQP& qp, bool positive_definite, const std
   check_problem(qp, !same);
   const auto name = [&] {  // (only matrices that passed the checks are named)
     id_ = qp.matrices_id;
-    values_ = qp.saddle ? qp.saddle->A.valuePtr() : qp.S.valuePtr();
+    values_ = values_of(qp);
   };
   if (same) {
     name();

@@ -88,24 +88,35 @@ double CapacitanceSolve::hold(const SparseCholesky& chol, const std::vector<int>
   return flops;
 }
 
-void CapacitanceSolve::solve(const SparseCholesky& chol, const Eigen::VectorXd& b, Eigen::VectorXd& y) const {
+// mu_ = Wᵀ v over the held set's columns.
+void CapacitanceSolve::held_products(const Eigen::VectorXd& v) const {
   const int h = static_cast<int>(held_.size());
+  mu_.resize(h);
+  for (int a = 0; a < h; ++a) {
+    const Column& c = *held_columns_[a];
+    double sum = 0.0;
+    for (std::size_t p = 0; p < c.rows.size(); ++p) sum += c.values[p] * v[c.rows[p]];
+    mu_[a] = sum;
+  }
+}
+
+// v_ += W mu_.
+void CapacitanceSolve::add_held_columns() const {
+  for (std::size_t a = 0; a < held_columns_.size(); ++a) {
+    const Column& c = *held_columns_[a];
+    for (std::size_t p = 0; p < c.rows.size(); ++p) v_[c.rows[p]] += c.values[p] * mu_[a];
+  }
+}
+
+void CapacitanceSolve::solve(const SparseCholesky& chol, const Eigen::VectorXd& b, Eigen::VectorXd& y) const {
   v_ = b;
   for (int i : held_) v_[i] = 0.0;
   chol.forward(v_);  // v = L⁻¹ P b̂
-  mu_.resize(h);
-  for (int a = 0; a < h; ++a) {  // Wᵀ v
-    const Column& c = *held_columns_[a];
-    double sum = 0.0;
-    for (std::size_t p = 0; p < c.rows.size(); ++p) sum += c.values[p] * v_[c.rows[p]];
-    mu_[a] = sum;
-  }
+  held_products(v_);
   K_.solveInPlace(mu_);
-  for (int a = 0; a < h; ++a) {  // v − W μ
-    const Column& c = *held_columns_[a];
-    for (std::size_t p = 0; p < c.rows.size(); ++p) v_[c.rows[p]] -= c.values[p] * mu_[a];
-  }
-  chol.backward(v_);  // ŷ = Pᵀ L⁻ᵀ (v − W μ): ŷ_A = 0 up to round-off
+  mu_ = -mu_;
+  add_held_columns();  // v − W μ
+  chol.backward(v_);   // ŷ = Pᵀ L⁻ᵀ (v − W μ): ŷ_A = 0 up to round-off
   y = v_;
   for (int i : held_) y[i] = b[i];
 }
@@ -116,21 +127,12 @@ void CapacitanceSolve::set_rhs(const SparseCholesky& chol, const Eigen::VectorXd
 }
 
 void CapacitanceSolve::solve_held(const SparseCholesky& chol, const Eigen::VectorXd& g, Eigen::VectorXd& x) const {
-  const int h = static_cast<int>(held_.size());
-  mu_.resize(h);
-  for (int a = 0; a < h; ++a) {  // ν's right-hand side g_A − Wᵀ v₀
-    const Column& c = *held_columns_[a];
-    double sum = 0.0;
-    for (std::size_t p = 0; p < c.rows.size(); ++p) sum += c.values[p] * v0_[c.rows[p]];
-    mu_[a] = g[held_[a]] - sum;
-  }
+  held_products(v0_);
+  for (std::size_t a = 0; a < held_.size(); ++a) mu_[a] = g[held_[a]] - mu_[a];  // ν's g_A − Wᵀ v₀
   K_.solveInPlace(mu_);
   v_ = v0_;
-  for (int a = 0; a < h; ++a) {  // v₀ + W ν
-    const Column& c = *held_columns_[a];
-    for (std::size_t p = 0; p < c.rows.size(); ++p) v_[c.rows[p]] += c.values[p] * mu_[a];
-  }
-  chol.backward(v_);  // x = Pᵀ L⁻ᵀ (v₀ + W ν): x_A = g_A up to round-off
+  add_held_columns();  // v₀ + W ν
+  chol.backward(v_);   // x = Pᵀ L⁻ᵀ (v₀ + W ν): x_A = g_A up to round-off
   x = v_;
   for (int i : held_) x[i] = g[i];
 }

@@ -65,6 +65,8 @@ class CapacitanceSolve {
     std::vector<double> values;
   };
   const Column& column(const SparseCholesky& chol, int i, double& flops);  // made if missing
+  void held_products(const Eigen::VectorXd& v) const;  // mu_ = Wᵀ v
+  void add_held_columns() const;                       // v_ += W mu_
   std::unordered_map<int, Column> columns_;  // W's column of each unknown made so far
   double stored_ = 0.0;                      // their entries
   double column_flops_ = 0.0, column_length_ = 0.0;  // of all columns made (their means)
