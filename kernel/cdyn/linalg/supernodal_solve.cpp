@@ -3,9 +3,10 @@
 #include "cdyn/linalg/supernodal_solve.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <queue>
 #include <utility>
+
+#include "cdyn/linalg/prefetch.hpp"
 
 namespace cdyn {
 
@@ -30,21 +31,9 @@ double dot(const double* a, const double* b, int m) {
   return (s0 + s1) + (s2 + s3);
 }
 
-// Asks for the cache lines of v[0 … length) ahead of their use (no effect on the values).
-// A sweep reads L once, in storage order forward and in reverse backward, a few hundred
-// bytes a column and a few columns a supernode, then the rows' entries of x: the
-// hardware's prefetcher, which follows a stream after some misses, does not keep up out
-// of cache.  Asked for eight columns ahead forward and four back, the free step at
-// n = 640 (both factors' sweeps half of it) took 10 % less time; at n = 160, in cache,
-// 5 % less (docs/performance.md, (c)).  Farther, or also in supernodes of fewer than four
-// columns, was no better.  The addresses are made as integers, v + from … v + from +
-// length − 1: near either end of L they lie outside it, where a prefetch may look (it
-// never faults) but a pointer may not point.
-inline void prefetch(const double* v, long from, long length) {
-  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(v) + from * sizeof(double);
-  for (long r = 0; r < length; r += 8)  // (8 doubles: a 64-byte line)
-    __builtin_prefetch(reinterpret_cast<const void*>(first + r * sizeof(double)));
-}
+// Both sweeps ask for L's columns ahead of their reads (linalg/prefetch.hpp): eight
+// columns ahead forward, four back.  Out of cache that took 10 % off the free step at
+// n = 640; farther, or also in the supernodes of fewer than four columns, was no better.
 
 // One supernode's block: nc columns, ld rows (its own nc first), values column-major.
 struct Block {
@@ -72,7 +61,7 @@ void forward_supernode(const Block& b, double* xs, double* E) {
   for (; c + 4 <= b.nc; c += 4) {
     const double* c0 = b.v + c * ld;
     const double *c1 = c0 + ld, *c2 = c1 + ld, *c3 = c2 + ld;
-    prefetch(c0, 8 * ld, 4 * ld);  // the group after next
+    prefetch_lines(c0, 8 * ld, 4 * ld);  // the group after next (linalg/prefetch.hpp)
     const double x0 = xs[c] / c0[c];  // (the 4 × 4 diagonal block, a column at a time)
     xs[c] = x0;
     xs[c + 1] -= c0[c + 1] * x0;
@@ -127,7 +116,7 @@ void back_supernode(const Block& b, double* x, double* G) {
   for (int r = 0; r < m; ++r) G[r] = x[b.rows[b.nc + r]];
   for (int c = b.nc - 1; c >= 0; --c) {
     const double* col = b.v + static_cast<long>(c) * b.ld;
-    prefetch(col, -4L * b.ld, b.ld);  // four columns back: the supernode's, or the one before
+    prefetch_lines(col, -4L * b.ld, b.ld);  // four columns back: this supernode's or the one before
     double t = xs[c] - dot(col + b.nc, G, m);
     for (int r = c + 1; r < b.nc; ++r) t -= col[r] * xs[r];
     xs[c] = t / col[c];
