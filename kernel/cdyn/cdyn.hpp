@@ -28,6 +28,7 @@
 #include "cdyn/linalg/least_squares.hpp"
 #include "cdyn/linalg/masked_cg.hpp"
 #include "cdyn/linalg/parallel.hpp"
+#include "cdyn/linalg/prefetch.hpp"
 #include "cdyn/linalg/sparse_cholesky.hpp"
 #include "cdyn/linalg/supernodal_solve.hpp"
 #include "cdyn/linalg/symmetric_gauss_seidel.hpp"
