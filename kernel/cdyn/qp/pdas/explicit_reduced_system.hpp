@@ -14,9 +14,10 @@
 //   - before touching the factor, a system whose active set differs from the factor's is
 //     solved by CG on S̃ (linalg/masked_cg.hpp: symmetric Gauss–Seidel preconditioner)
 //     when that costs fewer flops than the row updates (cg_pays).  On a well-conditioned
-//     S — the condensed P1+/P0 step matrix — a CG iteration costs a seventh of a
-//     forward/back solve, against hundreds of row updates (≈ 0.1 solve each) or a
-//     factorization when the contact zone jumps;
+//     S — the condensed P1+/P0 step matrix — a CG iteration costs a seventh to a half
+//     of a forward/back solve (as the caches hold S or not), against hundreds of row
+//     updates (0.1–0.6 solve each, and slower solves after them) or a factorization
+//     when the contact zone jumps;
 //   - once an active set has served three calls (time steps: a scheme's repeated solves
 //     of one step count once, StepSolver::next_in_same_step) in a row the contact zone
 //     has settled, and the factor is brought to it (resync_due), so that the coming
