@@ -27,6 +27,13 @@ bool stored(const SparseMatrix& S, int i, int j) {
 // such an unknown is not a bubble, and eliminating it would not pay.
 constexpr int kMaxDegree = 32;
 
+// M.reserve(count), but not for a matrix with no columns (everything condensed, as the
+// one unknown of an oscillator): reserve() would leave it uncompressed, and Eigen's
+// makeCompressed() then reads past the outer index of no columns.
+void reserve_per_column(SparseMatrix& M, const std::vector<int>& count) {
+  if (!count.empty()) M.reserve(count);
+}
+
 // S_vv: the rows and columns of S on the kept unknowns (increasing), compressed.
 SparseMatrix kept_block(const SparseMatrix& S, const std::vector<int>& kept, const std::vector<int>& kept_of) {
   const int n_kept = static_cast<int>(kept.size());
@@ -34,7 +41,7 @@ SparseMatrix kept_block(const SparseMatrix& S, const std::vector<int>& kept, con
   std::vector<int> count(n_kept, 0);
   for (int j = 0; j < n_kept; ++j)
     for (SparseMatrix::InnerIterator it(S, kept[j]); it; ++it) count[j] += kept_of[it.row()] >= 0;
-  S_vv.reserve(count);
+  reserve_per_column(S_vv, count);
   for (int j = 0; j < n_kept; ++j)  // rows in increasing order: kept_of is increasing
     for (SparseMatrix::InnerIterator it(S, kept[j]); it; ++it)
       if (kept_of[it.row()] >= 0) S_vv.insert(kept_of[it.row()], j) = it.value();
@@ -190,7 +197,7 @@ StaticCondensation::StaticCondensation(const SparseMatrix& S, const Eigen::Vecto
   std::vector<int> count(n_kept(), 0);
   for (int j = 0; j < n_kept(); ++j)
     for (SparseMatrix::InnerIterator it(S_, kept_[j]); it; ++it) count[j] += place[it.row()] >= 0;
-  S_bv_.reserve(count);
+  reserve_per_column(S_bv_, count);
   std::vector<std::pair<int, double>> column;
   for (int j = 0; j < n_kept(); ++j) {
     column.clear();
