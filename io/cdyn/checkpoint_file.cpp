@@ -42,6 +42,14 @@ class Reader {
     std::memcpy(&value, take(sizeof value), sizeof value);
     return value;
   }
+  // v = the next `count` values.  (No memcpy of none: an empty vector's data() may be
+  // null, which memcpy's arguments must not be even for zero bytes.)
+  template <class T>
+  void into(std::vector<T>& v, std::uint64_t count) {
+    v.resize(count);
+    const char* from = take(count * sizeof(T));
+    if (count > 0) std::memcpy(v.data(), from, count * sizeof(T));
+  }
   const char* take(std::size_t n) {
     if (n > bytes_.size() - at_) fail("truncated (it ends inside a record)");
     const char* p = bytes_.data() + at_;
@@ -106,13 +114,9 @@ CheckpointRecords read_checkpoint_file(const std::filesystem::path& path) {
     const auto count = read.get<std::uint64_t>();
     if (count > bytes.size()) read.fail("record '" + name + "' is longer than the file");
     if (kind == 'd') {
-      std::vector<double>& v = r.numbers[name];
-      v.resize(count);
-      std::memcpy(v.data(), read.take(count * sizeof(double)), count * sizeof(double));
+      read.into(r.numbers[name], count);
     } else if (kind == 'i') {
-      std::vector<std::int64_t>& v = r.integers[name];
-      v.resize(count);
-      std::memcpy(v.data(), read.take(count * sizeof(std::int64_t)), count * sizeof(std::int64_t));
+      read.into(r.integers[name], count);
     } else if (kind == 's') {
       r.texts[name] = std::string(read.take(count), count);
     } else {
