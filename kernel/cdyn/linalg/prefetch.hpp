@@ -3,10 +3,10 @@
 // The sweeps of a factor (linalg/supernodal_solve.cpp) and the products with a sparse
 // matrix (linalg/parallel.cpp) read long arrays in storage order, a few hundred bytes at a
 // time between other work.  Out of cache the processor's own prefetcher does not keep up
-// with such short runs: perf put most of their samples on their loads.  Asking a fixed
-// distance ahead took 12 % off the free step at n = 640, 16 % at n = 320 and 11 % at
-// n = 160 (docs/performance.md, (c)).  A prefetch changes no value and never faults, so
-// the addresses are made as integers: near the ends of an array they lie outside it,
+// with such short runs: perf put about half of their samples on their loads.  Asking a
+// fixed distance ahead took 12 % off the free step at n = 640, 16 % at n = 320 and 11 %
+// at n = 160 (docs/performance.md, (c)).  A prefetch changes no value and never faults,
+// so the addresses are made as integers: near the ends of an array they lie outside it,
 // where a pointer may not point.
 #pragma once
 
