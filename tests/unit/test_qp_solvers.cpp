@@ -621,6 +621,46 @@ TEST(QPSolvers, PdasHoldsAFewUnknownsByTheFactorOfSAndTheirCapacitanceMatrix) {
   EXPECT_EQ(by_default.counters().capacitance_solves, 0);  // (a solve here: 5e4 flops)
 }
 
+TEST(QPSolvers, PdasHoldsASetWhoseColumnsCostMoreThanASolveByCapacitanceOnceCGIsPriced) {
+  // Once CG's pair of solves has been measured, a set of held unknowns whose new columns
+  // and capacitance matrix cost more than one solve, but less than twice what the CG pair
+  // costs beyond it, is held by S's factor and its capacitance matrix instead of the pair
+  // (the chattering membrane's sets of 12–50 vertices).  A strip pressed onto the
+  // obstacle goes to CG (its capacitance matrix would cost hundreds of solves); after a
+  // lift-off, 20 scattered unknowns pressed at once make 20 new columns and their
+  // matrix: more than a solve's flops (with that budget, the rule before, this set went
+  // to CG; 15 did not), less than twice the pair's beyond it (25 do not).  They go to the
+  // capacitance solve, and the answer is S̃'s own factor's to round-off.
+  const int m = 30, n = m * m;
+  BoundQP qp = grid_obstacle(m, 24.0);
+  QPOptions options, by_factor;
+  options.pdas_capacitance_from = 0.0;
+  by_factor.pdas_cg_iterations = 0;
+  by_factor.pdas_capacitance_from = inf;
+  cdyn::PDASSolver pdas(options);
+  qp.r.setConstant(n, 1.0);
+  QPResult r = pdas.solve(qp);  // nothing held: the factor of S
+  qp.r.segment(5 * m, 10 * m).setConstant(-1.0);
+  r = pdas.solve(qp, &r);  // the strip
+  ASSERT_EQ(r.active.size(), static_cast<std::size_t>(10 * m));
+  ASSERT_GT(pdas.counters().cg_solves, 0);
+  qp.r.setConstant(n, 1.0);
+  r = pdas.solve(qp, &r);  // lift-off: S's own factor again
+  ASSERT_TRUE(r.active.empty());
+  const auto before = pdas.counters();
+  for (int spot = 0; spot < 20; ++spot) qp.r[(37 * spot + 11) % n] = -5.0;
+  r = pdas.solve(qp, &r);
+  expect_kkt(qp, r, QPOptions{}.tol, "20 pressed");
+  ASSERT_EQ(r.active.size(), 20u);
+  const auto after = pdas.counters();
+  EXPECT_EQ(after.cg_solves, before.cg_solves);
+  EXPECT_GT(after.capacitance_solves, before.capacitance_solves);
+  EXPECT_EQ(after.factorizations + after.row_updates, before.factorizations + before.row_updates);
+  cdyn::PDASSolver fresh(by_factor);
+  const QPResult expected = fresh.solve(qp);
+  EXPECT_LT((r.X - expected.X).lpNorm<Eigen::Infinity>(), 1e-14 * expected.X.lpNorm<Eigen::Infinity>());
+}
+
 TEST(QPSolvers, PdasPricesALiftOffFromAFreeBlockAsTheWholeFactorization) {
   // A body resting on the obstacle (its factor a free block's: most unknowns held) lifts
   // off but for a strip.  Bringing the factor to that set is a factorization of the

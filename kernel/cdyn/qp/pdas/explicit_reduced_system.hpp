@@ -104,6 +104,7 @@ class ExplicitReducedSystem : public ReducedSystem {
   bool cg_pays(const HeldSet& held) const;
   bool capacitance_pays(const HeldSet& held);
   double cg_iteration_flops() const;
+  double cg_pair_flops() const;
   void track_run(const HeldSet& held);
   const Eigen::VectorXd& solve_tilde(const Eigen::VectorXd& b, double cg_tol);  // into y_last_
   void build_rhs(const BoundQP& qp, const HeldSet& held, const Eigen::VectorXd& value);  // b̃, into b_

@@ -60,9 +60,8 @@ bool ExplicitReducedSystem::resync_due(const HeldSet& held) const {
 bool ExplicitReducedSystem::resync_pays(const HeldSet& held) const {
   if (settled_runs_ == 0 || counters_.cg_solves == 0) return true;
   const double uses = settled_uses_ / settled_runs_;
-  const double cg_call = 2.0 * double(counters_.cg_iterations) / counters_.cg_solves * cg_iteration_flops();
   const Sync sync = sync_cost(held);
-  return uses * (cg_call - sync.solve_flops) > sync.flops;
+  return uses * (cg_pair_flops() - sync.solve_flops) > sync.flops;
 }
 
 // What sync_factor(held) will do, in flops, and the flops of a solve it leaves: row
@@ -115,6 +114,12 @@ void ExplicitReducedSystem::track_run(const HeldSet& held) {
 // and the five vector updates.
 double ExplicitReducedSystem::cg_iteration_flops() const { return 2.0 * double(S_.nonZeros()) + 12.0 * n_; }
 
+// What a held set costs by CG, a loose solve and its tight resumption, at the mean
+// iterations of the CG solves so far (at least one).
+double ExplicitReducedSystem::cg_pair_flops() const {
+  return 2.0 * double(counters_.cg_iterations) / counters_.cg_solves * cg_iteration_flops();
+}
+
 // Whether a CG solve is expected to cost less than bringing the factor to `held`.
 // Bringing the factor there is what sync_factor does (sync_cost): beyond update_limit()
 // changes, or where it pays (refactorization_pays), a refactorization — of the free
@@ -144,11 +149,16 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
 // Whether the capacitance solve with S's own factor serves the unknowns `held` holds (and
 // if so, its matrix made for them): the factor must be S's, in chol_ (a copy of the kept
 // one would cost a quarter of a solve, and leave the factor of a settled set), and the
-// new columns and the capacitance matrix must cost at most one more solve — with the
-// solve itself, at most two, against CG's loose and tight solves (on the chattering
-// membrane at n = 160, 17 iterations a pair, 2.2 solves' time), and no factor moved.  A
-// column's cost is known once one is made: the first set makes one to measure it.  Only
-// where a solve costs at least
+// new columns and the capacitance matrix must cost at most twice what the CG pair the
+// set would otherwise take costs beyond the capacitance solve's own sweeps (before any
+// CG solve is measured, at most one solve): the columns are kept, and a contact zone
+// that stays where it is serves its next QPs with them.  On the chattering membrane at
+// n = 160 (P1+/P0 midpoint) a CG pair is 15–18 iterations, about 3.5 solves' time
+// (0.26 ms an iteration, 1.2 ms a solve), and sets of 12–50 held vertices whose new
+// columns cost more than one solve went to it: 12.0 → 11.4 ms a step with this budget
+// (once the pair's cost: 11.8; four times: 11.5; docs/performance.md, "Contact in every
+// regime", nineteenth session).  A column's cost is known once one is made: the first
+// set makes one to measure it.  Only where a solve costs at least
 // pdas_capacitance_from flops: on a small S the capacitance solve's fixed work (the
 // held list, the columns' bookkeeping, two half solves and three passes over the
 // unknowns) outweighs what it saves, and the factor is cheap to move (measured: the
@@ -156,8 +166,9 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
 // small sets it served, sent its later ones to CG: 0.148 → 0.160 ms a step).  Not for a
 // scheme's solve to round-off (by_factor_: the factor brought to the set, as before).
 bool ExplicitReducedSystem::capacitance_pays(const HeldSet& held) {
-  const double budget = chol_.solve_flops();
-  if (by_factor_ || !whole_in_chol_ || !chol_.has_halves() || !(budget >= opt_.pdas_capacitance_from)) return false;
+  const double solve = chol_.solve_flops();
+  if (by_factor_ || !whole_in_chol_ || !chol_.has_halves() || !(solve >= opt_.pdas_capacitance_from)) return false;
+  const double budget = counters_.cg_solves > 0 ? std::max(solve, 2.0 * (cg_pair_flops() - solve)) : solve;
   ScopeTimer timer(counters_.capacitance_s);
   const auto first = std::find_if(held.begin(), held.end(), [](char h) { return h != 0; });
   if (first == held.end()) return false;
