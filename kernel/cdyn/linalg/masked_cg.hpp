@@ -27,8 +27,8 @@
 // On the condensed P1+/P0 membrane (n = 160, 25k unknowns, the contact window of
 // docs/performance.md (a)) a solve takes 5 iterations on average, 0.25 ms each with its
 // share of the solve's set-up (the first residual is one product with S): a seventh of
-// a forward/back solve with the Cholesky factor where that was measured (1.7 ms), about
-// half of one (0.43 ms) on a later machine and with the kernel's own sweeps
+// a forward/back solve with the Cholesky factor where that was measured (1.7 ms), a
+// fifth of one (1.1–1.3 ms) on a later machine and with the kernel's own sweeps
 // (linalg/supernodal_solve.hpp).  An iteration reads S's triangles and six vectors, more
 // than a 2 MB L2 holds: its time is the bytes it reads (docs/performance.md, "Contact in
 // every regime", eighteenth session).

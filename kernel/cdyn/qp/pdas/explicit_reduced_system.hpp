@@ -14,10 +14,9 @@
 //   - before touching the factor, a system whose active set differs from the factor's is
 //     solved by CG on S̃ (linalg/masked_cg.hpp: symmetric Gauss–Seidel preconditioner)
 //     when that costs fewer flops than the row updates (cg_pays).  On a well-conditioned
-//     S — the condensed P1+/P0 step matrix — a CG iteration costs a seventh to a half
-//     of a forward/back solve (as the caches hold S or not), against hundreds of row
-//     updates (0.1–0.6 solve each, and slower solves after them) or a factorization
-//     when the contact zone jumps;
+//     S — the condensed P1+/P0 step matrix — a CG iteration costs a seventh to a fifth
+//     of a forward/back solve, against hundreds of row updates (0.1–0.2 solve each, and
+//     slower solves after them) or a factorization when the contact zone jumps;
 //   - once an active set has served three calls (time steps: a scheme's repeated solves
 //     of one step count once, StepSolver::next_in_same_step) in a row the contact zone
 //     has settled, and the factor is brought to it (resync_due), so that the coming
@@ -35,9 +34,9 @@
 //     then the linear step's one solve, where CG pairs and a refactorization would be;
 //   - while the factor is S's own, a set that holds a few unknowns (a membrane touching
 //     the obstacle here and there) is solved with it and the capacitance matrix of the
-//     held unknowns (qp/pdas/capacitance_solve.hpp): one solve's cost, exact, where CG
-//     costs about two, when its columns and matrix cost at most another solve
-//     (capacitance_pays).
+//     held unknowns (qp/pdas/capacitance_solve.hpp): one solve's cost, exact, where a
+//     CG pair costs about three, when its new columns and matrix cost at most twice
+//     what that pair costs beyond the solve (capacitance_pays).
 // A new S is first factorized whole: that checks it is positive definite (CHOLMOD's LLᵀ
 // stops at the first non-positive pivot: NumericalError naming the unknown) and is the
 // unconstrained solve of a cold start.

@@ -155,10 +155,10 @@ bool ExplicitReducedSystem::cg_pays(const HeldSet& held) const {
 // that stays where it is serves its next QPs with them.  On the chattering membrane at
 // n = 160 (P1+/P0 midpoint) a CG pair is 15–18 iterations, about 3.5 solves' time
 // (0.26 ms an iteration, 1.2 ms a solve), and sets of 12–50 held vertices whose new
-// columns cost more than one solve went to it: 12.0 → 11.4 ms a step with this budget
-// (once the pair's cost: 11.8; four times: 11.5; docs/performance.md, "Contact in every
-// regime", nineteenth session).  A column's cost is known once one is made: the first
-// set makes one to measure it.  Only where a solve costs at least
+// columns cost more than one solve went to it: 12.6 → 11.8 ms a step with this budget
+// (docs/performance.md, "Contact in every regime", nineteenth session, where once and
+// four times the pair's cost were measured too).  A column's cost is known once one is
+// made: the first set makes one to measure it.  Only where a solve costs at least
 // pdas_capacitance_from flops: on a small S the capacitance solve's fixed work (the
 // held list, the columns' bookkeeping, two half solves and three passes over the
 // unknowns) outweighs what it saves, and the factor is cheap to move (measured: the
