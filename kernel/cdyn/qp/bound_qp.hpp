@@ -87,7 +87,8 @@ struct QPOptions {
   // pdas, explicit S: a set holding a few unknowns, while the factor is S's own, solved
   // with that factor and the dense capacitance matrix of the held unknowns
   // (qp/pdas/capacitance_solve.hpp: one solve's cost, exact) where its columns and
-  // matrix cost at most one more solve, before CG or moving the factor — if a solve
+  // matrix cost at most twice what the set's CG pair costs beyond one solve (one solve
+  // before any CG solve is measured), before CG or moving the factor — if a solve
   // with S's factor costs at least this many flops (10⁶: the membrane from n = 160 on;
   // on smaller problems its fixed work outweighs what it saves); infinity: never.
   double pdas_capacitance_from = 1e6;
