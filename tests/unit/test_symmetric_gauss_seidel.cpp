@@ -9,6 +9,9 @@
 //    to the free unknowns I: solve_lower = L̂⁻¹, multiply_lower = L̂, and apply gives
 //    t = L̂⁻ᵀ v and q = L̂⁻¹ Ŝ L̂⁻ᵀ v (Eisenstat's identity, exact algebra), all to round-off
 //    of O(1) numbers: 1e-12.
+//  - first_residual gives CG's first residuals from a guess y, r = b − S̃y (0 on A) and
+//    r̂ = L̂⁻¹ D^{-1/2} r, over all rows and over the free rows alone, as the dense
+//    product and inverse give them: 1e-12 again.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -73,6 +76,35 @@ TEST(SymmetricGaussSeidel, GreedyColouringOfTheFivePointGridIsRedBlack) {
   expect_proper_colouring(S, sgs);
 }
 
+// Ŝ, L̂ and L̂⁻¹ of a held set, dense, on I (rows and columns of A zero, L̂'s diagonal 1 on
+// I only), and P the projection onto I.
+struct DenseSplitting {
+  MatrixXd Shat, Lhat, Lhat_inv, P;
+  VectorXd sqrt_d;
+};
+DenseSplitting dense_splitting(const cdyn::SparseMatrix& S, const cdyn::SymmetricGaussSeidel& sgs,
+                               const std::vector<char>& held) {
+  const int n = static_cast<int>(S.rows());
+  const MatrixXd Sd(S);
+  DenseSplitting d;
+  d.sqrt_d = Sd.diagonal().cwiseSqrt();
+  d.Shat = MatrixXd::Zero(n, n);
+  d.Lhat = MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      if (held[i] || held[j]) continue;
+      d.Shat(i, j) = Sd(i, j) / (d.sqrt_d[i] * d.sqrt_d[j]);
+      if (i == j)
+        d.Lhat(i, j) = 1.0;
+      else if (sgs.colour()[j] < sgs.colour()[i])
+        d.Lhat(i, j) = d.Shat(i, j);
+    }
+  d.P = MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) d.P(i, i) = held[i] ? 0.0 : 1.0;
+  d.Lhat_inv = (d.Lhat + (MatrixXd::Identity(n, n) - d.P)).inverse() * d.P;
+  return d;
+}
+
 TEST(SymmetricGaussSeidel, SweepsAndEisenstatOperatorMatchDenseAlgebra) {
   std::mt19937 gen(11);
   const int m = 7, n = m * m;
@@ -83,22 +115,10 @@ TEST(SymmetricGaussSeidel, SweepsAndEisenstatOperatorMatchDenseAlgebra) {
 
   std::vector<char> held(n, 0);
   for (int i = 3; i < n; i += 6) held[i] = 1;
-  // dense Ŝ and L̂ on I (rows and columns of A zero, L̂'s diagonal 1 on I only)
-  const MatrixXd Sd(S);
-  const VectorXd s = Sd.diagonal().cwiseSqrt();
-  MatrixXd Shat = MatrixXd::Zero(n, n), Lhat = MatrixXd::Zero(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      if (held[i] || held[j]) continue;
-      Shat(i, j) = Sd(i, j) / (s[i] * s[j]);
-      if (i == j)
-        Lhat(i, j) = 1.0;
-      else if (sgs.colour()[j] < sgs.colour()[i])
-        Lhat(i, j) = Shat(i, j);
-    }
-  MatrixXd P = MatrixXd::Zero(n, n);  // the projection onto I, to invert L̂ on I only
-  for (int i = 0; i < n; ++i) P(i, i) = held[i] ? 0.0 : 1.0;
-  const MatrixXd Lhat_inv = (Lhat + (MatrixXd::Identity(n, n) - P)).inverse() * P;
+  const DenseSplitting d = dense_splitting(S, sgs, held);
+  const MatrixXd& Shat = d.Shat;
+  const MatrixXd& Lhat = d.Lhat;
+  const MatrixXd& Lhat_inv = d.Lhat_inv;
 
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   VectorXd v(n);
@@ -119,6 +139,47 @@ TEST(SymmetricGaussSeidel, SweepsAndEisenstatOperatorMatchDenseAlgebra) {
     if (held[i]) {
       EXPECT_EQ(t[i], 0.0);
       EXPECT_EQ(q[i], 0.0);
+    }
+}
+
+TEST(SymmetricGaussSeidel, FirstResidualsMatchDenseAlgebraOnAllAndOnFreeRows) {
+  std::mt19937 gen(5);
+  const int m = 7, n = m * m;
+  const cdyn::SparseMatrix S = triangle_grid_matrix(m, gen);
+  const cdyn::SymmetricGaussSeidel sgs(S);
+  std::vector<char> held(n, 0);
+  for (int i = 1; i < n; i += 4) held[i] = 1;
+  const DenseSplitting d = dense_splitting(S, sgs, held);
+
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  VectorXd b(n), y(n), y_hat(n);
+  for (int i = 0; i < n; ++i) {
+    b[i] = U(gen);
+    y[i] = held[i] ? b[i] : U(gen);
+    y_hat[i] = held[i] ? 0.0 : d.sqrt_d[i] * y[i];
+  }
+  // r = b − S̃y on I: S's rows on I against y's free entries; 0 on A
+  const VectorXd y_free = d.P * y;
+  const VectorXd r_dense = d.P * (b - MatrixXd(S) * y_free);
+  const VectorXd r_hat_dense = d.Lhat_inv * r_dense.cwiseQuotient(d.sqrt_d);
+
+  VectorXd u(n), r_hat(n), r(n);
+  sgs.first_residual(held, b.data(), y_hat.data(), u.data(), r_hat.data(), r.data());
+  EXPECT_LE((r - r_dense).lpNorm<Eigen::Infinity>(), 1e-12);
+  EXPECT_LE((r_hat - r_hat_dense).lpNorm<Eigen::Infinity>(), 1e-12);
+
+  std::vector<int> free;
+  for (int i = 0; i < n; ++i)
+    if (!held[i]) free.push_back(i);
+  VectorXd u2 = VectorXd::Zero(n), r_hat2 = VectorXd::Zero(n), r2 = VectorXd::Zero(n);
+  sgs.first_residual(sgs.free_rows(free), b.data(), y_hat.data(), u2.data(), r_hat2.data(), r2.data());
+  EXPECT_LE((r2 - r_dense).lpNorm<Eigen::Infinity>(), 1e-12);
+  EXPECT_LE((r_hat2 - r_hat_dense).lpNorm<Eigen::Infinity>(), 1e-12);
+  for (int i = 0; i < n; ++i)
+    if (held[i]) {
+      EXPECT_EQ(r[i], 0.0);
+      EXPECT_EQ(r_hat[i], 0.0);
+      EXPECT_EQ(r2[i], 0.0);
     }
 }
 

@@ -12,23 +12,6 @@ namespace cdyn {
 
 namespace {
 
-// q_i = (S p)_i on the listed free rows (q's held rows are not written).  S is
-// symmetric, so row i is column i of the column-major storage: a gather, shared among
-// the threads by rows.
-void product(const SparseMatrix& S, const std::vector<int>& free, const double* p, double* q) {
-  const int m = static_cast<int>(free.size());
-  const int* outer = S.outerIndexPtr();
-  const int* inner = S.innerIndexPtr();
-  const double* v = S.valuePtr();
-#pragma omp parallel for schedule(static) if (S.nonZeros() >= kParallelWork)
-  for (int a = 0; a < m; ++a) {
-    const int i = free[a];
-    double sum = 0.0;
-    for (int k = outer[i]; k < outer[i + 1]; ++k) sum += v[k] * p[inner[k]];
-    q[i] = sum;
-  }
-}
-
 // max_i |x_i| / s_i: a residual in the units of the stopping test.
 double scaled_max(const Eigen::VectorXd& x, const Eigen::VectorXd& s) { return max_abs(x, &s); }
 
@@ -116,36 +99,41 @@ double dot_on(ListedRows I, const double* x, const double* y, std::vector<double
   return s;
 }
 
+// The number of rows not held (a sum of exact integers: the same on any thread count).
+int free_count(const std::vector<char>& held) {
+  const long n = static_cast<long>(held.size());
+  int count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : count) if (n >= kParallelWork)
+  for (long i = 0; i < n; ++i) count += held[i] == 0;
+  return count;
+}
+
 }  // namespace
 
 MaskedCG::MaskedCG(const SparseMatrix& S)
-    : S_(S), sgs_(S), D_(sgs_.sqrt_diagonal().cwiseAbs2()), inverse_sqrt_D_(sgs_.sqrt_diagonal().cwiseInverse()) {}
+    : sgs_(S), D_(sgs_.sqrt_diagonal().cwiseAbs2()), inverse_sqrt_D_(sgs_.sqrt_diagonal().cwiseInverse()) {}
 
-// y = b on A; r = b − S̃y on I, 0 on A (S̃'s rows on I do not see the columns of A);
-// then, unless r already meets the tolerance, r̂ = L̂⁻¹ D^{-1/2} r, p = r̂ and r̂ᵀr̂.
-// (Every loop over the vectors is shared among the threads, an entry to a thread: the
-// set-up's passes, on one thread, kept the second one waiting for a tenth of the impact
-// window's time at n = 320.)  Returns max_{i ∉ A} |r_i| / S_ii.
+// y = b on A; r = b − S̃y on I, 0 on A (S̃'s rows on I do not see the columns of A), and
+// r̂ = L̂⁻¹ D^{-1/2} r with it, by one pass over S (SymmetricGaussSeidel::first_residual);
+// then, unless r already meets the tolerance, p = r̂ and r̂ᵀr̂.  (Every loop over the
+// vectors is shared among the threads, an entry to a thread: the set-up's passes, on one
+// thread, kept the second one waiting for a tenth of the impact window's time at n = 320.)
+// Returns max_{i ∉ A} |r_i| / S_ii.
 double MaskedCG::set_up_on_all_rows(const std::vector<char>& held, const Eigen::VectorXd& b, Eigen::VectorXd& y,
                                     double tol) {
   const int n = sgs_.size();
   for (Eigen::VectorXd* v : {&r_, &r_hat_, &p_, &t_, &w_, &q_}) v->resize(n);
   zero_outside_ = false;  // (written on every row below)
   const bool threaded = 2L * n >= kParallelWork;
+  const Eigen::VectorXd& sqrt_d = sgs_.sqrt_diagonal();
 #pragma omp parallel for schedule(static) if (threaded)
   for (int i = 0; i < n; ++i) {
     if (held[i]) y[i] = b[i];
-    p_[i] = held[i] ? 0.0 : y[i];
+    t_[i] = held[i] ? 0.0 : sqrt_d[i] * y[i];  // ŷ = D^{1/2} y on I
   }
-  product(S_, free_, p_.data(), q_.data());  // (q's held rows, not written, are not read)
-#pragma omp parallel for schedule(static) if (threaded)
-  for (int i = 0; i < n; ++i) {
-    r_[i] = held[i] ? 0.0 : b[i] - q_[i];
-    q_[i] = r_[i] * inverse_sqrt_D_[i];  // D^{-1/2} r, for r̂ below
-  }
+  sgs_.first_residual(held, b.data(), t_.data(), w_.data(), r_hat_.data(), r_.data());
   const double scaled = scaled_max(r_, D_);
   if (!(scaled > tol)) return scaled;
-  sgs_.solve_lower(held, q_.data(), r_hat_.data());
   rr_ = dot(r_hat_, r_hat_);
 #pragma omp parallel for schedule(static) if (threaded)
   for (int i = 0; i < n; ++i) p_[i] = r_hat_[i];
@@ -172,16 +160,12 @@ double MaskedCG::set_up_on_free_rows(const std::vector<char>& held, const Eigen:
 #pragma omp parallel for schedule(static) if (2L * n >= kParallelWork)
   for (int i = 0; i < n; ++i)
     if (held[i]) y[i] = b[i];
-  for (int i : free_) p_[i] = y[i];
-  product(S_, free_, p_.data(), q_.data());
-  for (int i : free_) {
-    r_[i] = b[i] - q_[i];
-    q_[i] = r_[i] * inverse_sqrt_D_[i];
-  }
+  const Eigen::VectorXd& sqrt_d = sgs_.sqrt_diagonal();
+  for (int i : free_) t_[i] = sqrt_d[i] * y[i];  // ŷ = D^{1/2} y on I
+  free_rows_ = sgs_.free_rows(free_);
+  sgs_.first_residual(free_rows_, b.data(), t_.data(), w_.data(), r_hat_.data(), r_.data());
   const double scaled = scaled_max(free_, r_, D_);
   if (!(scaled > tol)) return scaled;
-  free_rows_ = sgs_.free_rows(free_);
-  sgs_.solve_lower(free_rows_, q_.data(), r_hat_.data());
   rr_ = dot_on(ListedRows{free_, int(free_.size())}, r_hat_.data(), r_hat_.data(), block_rr_);
   for (int i : free_) p_[i] = r_hat_[i];
   return scaled;
@@ -221,12 +205,12 @@ MaskedCGResult MaskedCG::solve(const std::vector<char>& held, const Eigen::Vecto
     rr_ = rr_next_;
   } else {
     if (y.size() != n) y = Eigen::VectorXd::Zero(n);
-    free_ = indices_where(n, [&](int i) { return !held[i]; });
     // Most rows held (resting contact, a chattering contact zone): the iterations visit
     // the free rows alone.  Every vector of the iteration is 0 on the held rows, and the
     // whole-vector sweeps spent most of their time writing those zeros (the resting
     // membrane at n = 160, 97 % of the unknowns held: 20.2 → 18.5 ms a step).
-    compact_ = 2 * free_.size() < static_cast<std::size_t>(n);
+    compact_ = 2 * free_count(held) < n;
+    if (compact_) free_ = indices_where(n, [&](int i) { return !held[i]; });
     result.scaled_residual = compact_ ? set_up_on_free_rows(held, b, y, tol) : set_up_on_all_rows(held, b, y, tol);
     if (!(result.scaled_residual > tol)) {
       result.converged = std::isfinite(result.scaled_residual);

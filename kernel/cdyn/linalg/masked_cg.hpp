@@ -26,10 +26,10 @@
 //
 // On the condensed P1+/P0 membrane (n = 160, 25k unknowns, the contact window of
 // docs/performance.md (a)) a solve takes 5 iterations on average, 0.25 ms each with its
-// share of the solve's set-up (the first residual is one product with S): a seventh of
-// a forward/back solve with the Cholesky factor where that was measured (1.7 ms), a
-// fifth of one (1.1–1.3 ms) on a later machine and with the kernel's own sweeps
-// (linalg/supernodal_solve.hpp).  An iteration reads S's triangles and six vectors, more
+// share of the solve's set-up (the first residual is one more pass over S's triangles):
+// a seventh of a forward/back solve with the Cholesky factor where that was measured
+// (1.7 ms), a fifth of one (1.1–1.3 ms) on a later machine and with the kernel's own
+// sweeps (linalg/supernodal_solve.hpp).  An iteration reads S's triangles and six vectors, more
 // than a 2 MB L2 holds: its time is the bytes it reads (docs/performance.md, "Contact in
 // every regime", eighteenth session).
 #pragma once
@@ -51,8 +51,9 @@ struct MaskedCGResult {
 // (kept between solves: a PDAS step calls it several times), and the residual it ends with.
 class MaskedCG {
  public:
-  // S: symmetric, full storage, compressed, positive diagonal.  S is referenced, not
-  // copied: it must outlive this object and keep its values.
+  // S: symmetric, full storage, compressed, positive diagonal.  Its entries are copied
+  // into the preconditioner's scaled triangles, which serve every pass over S (the first
+  // residual's too): new values of S need a new MaskedCG.
   explicit MaskedCG(const SparseMatrix& S);
 
   // Solves S̃ y = b from the first guess y (resized to zero if it has the wrong size);
@@ -68,7 +69,6 @@ class MaskedCG {
   const Eigen::VectorXd& residual() const { return r_; }
 
  private:
-  const SparseMatrix& S_;
   SymmetricGaussSeidel sgs_;
   Eigen::VectorXd D_, inverse_sqrt_D_;  // diag(S), diag(S)^{-1/2}
   Eigen::VectorXd r_, r_hat_, p_, t_, w_, q_;

@@ -81,6 +81,39 @@ double plus_row(const Triangle& T, int k, double s, const double* x) {
 
 bool SymmetricGaussSeidel::threaded() const { return lower_.column.size() + upper_.column.size() >= kParallelWork; }
 
+// Row k (unknown i) of first_residual(): Σ Ŝ_ij ŷ_j over both triangles and Σ Ŝ_ij u_j over
+// the lower one share the lower entries' reads.
+void SymmetricGaussSeidel::first_residual_row(int k, const double* b, const double* y_hat, double* u,
+                                              double* r_hat, double* r) const {
+  const int i = rows_[k];
+  double upper_y = 0.0, lower_y = 0.0, lower_u = 0.0;
+  for (int p = upper_.start[k]; p < upper_.start[k + 1]; ++p) upper_y += upper_.value[p] * y_hat[upper_.column[p]];
+  for (int p = lower_.start[k]; p < lower_.start[k + 1]; ++p) {
+    const int j = lower_.column[p];
+    lower_y += lower_.value[p] * y_hat[j];
+    lower_u += lower_.value[p] * u[j];
+  }
+  const double g = b[i] / sqrt_diagonal_[i];
+  u[i] = (g - upper_y) - lower_u;
+  r_hat[i] = u[i] - y_hat[i];
+  r[i] = sqrt_diagonal_[i] * (((g - y_hat[i]) - upper_y) - lower_y);
+}
+
+void SymmetricGaussSeidel::first_residual(const std::vector<char>& held, const double* b, const double* y_hat,
+                                          double* u, double* r_hat, double* r) const {
+#pragma omp parallel if (threaded())
+  for (int c = 0; c < colours(); ++c) {
+#pragma omp for schedule(static)
+    for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
+      const int i = rows_[k];
+      if (held[i])
+        u[i] = r_hat[i] = r[i] = 0.0;
+      else
+        first_residual_row(k, b, y_hat, u, r_hat, r);
+    }
+  }
+}
+
 void SymmetricGaussSeidel::solve_lower(const std::vector<char>& held, const double* in, double* out) const {
 #pragma omp parallel if (threaded())
   for (int c = 0; c < colours(); ++c) {
@@ -152,6 +185,17 @@ void SymmetricGaussSeidel::solve_lower(const FreeRows& free, const double* in, d
       const int i = rows_[k];
       out[i] = minus_row(lower_, k, in[i], out);
     }
+  }
+}
+
+void SymmetricGaussSeidel::first_residual(const FreeRows& free, const double* b, const double* y_hat, double* u,
+                                          double* r_hat, double* r) const {
+  const int colours = static_cast<int>(free.colour_start.size()) - 1;
+#pragma omp parallel if (threaded())
+  for (int c = 0; c < colours; ++c) {
+#pragma omp for schedule(static)
+    for (int m = free.colour_start[c]; m < free.colour_start[c + 1]; ++m)
+      first_residual_row(free.position[m], b, y_hat, u, r_hat, r);
   }
 }
 

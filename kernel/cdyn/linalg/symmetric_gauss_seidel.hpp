@@ -61,10 +61,22 @@ class SymmetricGaussSeidel {
   // apply() on the free rows alone: q_I = (Â v)_I and t_I = (L̂⁻ᵀ v)_I, with t, w, q 0
   // on the held rows on entry (left so).
   void apply(const FreeRows& free, const double* v, double* t, double* w, double* q) const;
+  // CG's first residuals from a guess y, by one pass over Ŝ's two triangles instead of a
+  // product with S and a forward sweep: with g = D^{-1/2} b and ŷ = D^{1/2} y (0 on A),
+  //     r = b − S̃y = D^{1/2} (g − Ŝŷ),   r̂ = L̂⁻¹ D^{-1/2} r = L̂⁻¹ (g − (L̂ᵀ − I) ŷ) − ŷ,
+  // since Ŝ = L̂ + L̂ᵀ − I: a row gathers ŷ over both triangles and u = L̂⁻¹ (g − (L̂ᵀ − I)ŷ)
+  // over the lower one, colour by colour (Eisenstat's trick applied to the residual).
+  // r, r̂ and u (work) are 0 on A.
+  void first_residual(const std::vector<char>& held, const double* b, const double* y_hat, double* u, double* r_hat,
+                      double* r) const;
   // out = L̂⁻¹ in (forward sweep).
   void solve_lower(const std::vector<char>& held, const double* in, double* out) const;
   // out = L̂ in (in_A = 0 assumed).
   void multiply_lower(const std::vector<char>& held, const double* in, double* out) const;
+  // first_residual() on the free rows alone, with u, r̂ and r 0 on the held rows on entry
+  // (left so) and ŷ 0 there.
+  void first_residual(const FreeRows& free, const double* b, const double* y_hat, double* u, double* r_hat,
+                      double* r) const;
   // The same on the free rows alone: out_I, with out (solve_lower) or in (multiply_lower)
   // 0 on the held rows on entry; the held rows of out are not written.
   void solve_lower(const FreeRows& free, const double* in, double* out) const;
@@ -72,6 +84,7 @@ class SymmetricGaussSeidel {
 
  private:
   bool threaded() const;  // whether a sweep is long enough for threads (linalg/parallel.hpp)
+  void first_residual_row(int k, const double* b, const double* y_hat, double* u, double* r_hat, double* r) const;
 
   // One strict triangle of Ŝ: for each row in sweep order (rows_), its entries to
   // earlier colours (lower_) or to later ones (upper_), compressed.

@@ -81,7 +81,7 @@ void ExplicitReducedSystem::prepare(const BoundQP& qp, bool new_matrices) {
   take_whole_factor();
   cg_failed_ = false;
   cg_.reset();
-  if (opt_.pdas_cg_iterations > 0) cg_.emplace(S_);  // (references the member S_)
+  if (opt_.pdas_cg_iterations > 0) cg_.emplace(S_);
 }
 
 void ExplicitReducedSystem::refactorize(const HeldSet& held) {
