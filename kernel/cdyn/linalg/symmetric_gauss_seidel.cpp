@@ -114,17 +114,6 @@ void SymmetricGaussSeidel::first_residual(const std::vector<char>& held, const d
   }
 }
 
-void SymmetricGaussSeidel::solve_lower(const std::vector<char>& held, const double* in, double* out) const {
-#pragma omp parallel if (threaded())
-  for (int c = 0; c < colours(); ++c) {
-#pragma omp for schedule(static)
-    for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) {
-      const int i = rows_[k];
-      out[i] = held[i] ? 0.0 : minus_row(lower_, k, in[i], out);
-    }
-  }
-}
-
 void SymmetricGaussSeidel::multiply_lower(const std::vector<char>& held, const double* in, double* out) const {
 #pragma omp parallel for schedule(static) if (threaded())
   for (int k = 0; k < size(); ++k) {
@@ -173,19 +162,6 @@ SymmetricGaussSeidel::FreeRows SymmetricGaussSeidel::free_rows(const std::vector
   std::vector<int> next(f.colour_start.begin(), f.colour_start.end() - 1);
   for (int i : free) f.position[next[colour_[i]]++] = position_[i];
   return f;
-}
-
-void SymmetricGaussSeidel::solve_lower(const FreeRows& free, const double* in, double* out) const {
-  const int colours = static_cast<int>(free.colour_start.size()) - 1;
-#pragma omp parallel if (threaded())
-  for (int c = 0; c < colours; ++c) {
-#pragma omp for schedule(static)
-    for (int m = free.colour_start[c]; m < free.colour_start[c + 1]; ++m) {
-      const int k = free.position[m];
-      const int i = rows_[k];
-      out[i] = minus_row(lower_, k, in[i], out);
-    }
-  }
 }
 
 void SymmetricGaussSeidel::first_residual(const FreeRows& free, const double* b, const double* y_hat, double* u,

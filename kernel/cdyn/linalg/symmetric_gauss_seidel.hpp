@@ -69,17 +69,14 @@ class SymmetricGaussSeidel {
   // r, r̂ and u (work) are 0 on A.
   void first_residual(const std::vector<char>& held, const double* b, const double* y_hat, double* u, double* r_hat,
                       double* r) const;
-  // out = L̂⁻¹ in (forward sweep).
-  void solve_lower(const std::vector<char>& held, const double* in, double* out) const;
   // out = L̂ in (in_A = 0 assumed).
   void multiply_lower(const std::vector<char>& held, const double* in, double* out) const;
   // first_residual() on the free rows alone, with u, r̂ and r 0 on the held rows on entry
   // (left so) and ŷ 0 there.
   void first_residual(const FreeRows& free, const double* b, const double* y_hat, double* u, double* r_hat,
                       double* r) const;
-  // The same on the free rows alone: out_I, with out (solve_lower) or in (multiply_lower)
-  // 0 on the held rows on entry; the held rows of out are not written.
-  void solve_lower(const FreeRows& free, const double* in, double* out) const;
+  // multiply_lower() on the free rows alone: out_I, with in 0 on the held rows; the held
+  // rows of out are not written.
   void multiply_lower(const FreeRows& free, const double* in, double* out) const;
 
  private:
